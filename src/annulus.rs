@@ -1,0 +1,198 @@
+//! Where candidates are thrown around an active point.
+
+use crate::random::{symmetric, unit};
+use crate::vector::{norm_squared, scale};
+use rand::Rng;
+
+/// How candidate points are drawn around an active point.
+///
+/// Both give a valid Poisson disk set; they differ in how densely it is
+/// packed and in how much each attempt costs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Candidates {
+    /// Bridson's original: uniform **in volume** over the annulus (shell)
+    /// `r <= |d| < 2r` around the active point, drawn by rejection from the
+    /// cube `[-2r, 2r)^N`. Gives the classic pattern: in 2-D with `k = 30`,
+    /// a relative radius ρ ≈ 0.73 (see [`relative_radius`](crate::relative_radius)).
+    #[default]
+    Annulus,
+    /// On the sphere of radius `r·(1 + 1e-7)` around the active point
+    /// (Roberts 2019): in 2-D the `k` attempts are evenly spaced in angle
+    /// from a random start, in other dimensions the directions are uniform
+    /// on the sphere. Packs denser (2-D ρ ≈ 0.8 with `k = 30`) and wastes
+    /// fewer attempts, at some cost in the isotropy of the spectrum.
+    Sphere,
+}
+
+/// Relative gap between `r` and the on-sphere candidate distance; large
+/// enough that rounding never puts the candidate closer than `r` to its
+/// parent for coordinates within ~10⁸·r of each other.
+const SPHERE_SLACK: f64 = 1e-7;
+
+/// Draws candidate offsets for one sampler; holds what can be precomputed.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CandidateSampler<const N: usize> {
+    kind: Candidates,
+    radius: f64,
+    radius_squared: f64,
+    /// Rotation by `2π/k`, for the evenly spaced 2-D sphere variant.
+    step: (f64, f64),
+}
+
+impl<const N: usize> CandidateSampler<N> {
+    pub(crate) fn new(kind: Candidates, radius: f64, attempts: u32) -> Self {
+        let step = cos_sin(core::f64::consts::TAU / f64::from(attempts));
+        Self {
+            kind,
+            radius,
+            radius_squared: radius * radius,
+            step,
+        }
+    }
+
+    /// Starts the attempts around one active point; returns the state that
+    /// [`Self::offset`] advances (only used by the 2-D sphere variant).
+    #[inline(always)]
+    pub(crate) fn start<R: Rng + ?Sized>(&self, rng: &mut R) -> [f64; N] {
+        if N == 2 && self.kind == Candidates::Sphere {
+            unit_direction(rng)
+        } else {
+            [0.0; N]
+        }
+    }
+
+    /// The offset of the next candidate from its active point.
+    #[inline(always)]
+    pub(crate) fn offset<R: Rng + ?Sized>(&self, rng: &mut R, state: &mut [f64; N]) -> [f64; N] {
+        match self.kind {
+            Candidates::Annulus => loop {
+                // Uniform in the cube [-2r, 2r)^N, kept if r <= |d| < 2r:
+                // uniform in volume over the shell. Acceptance: 59 % in 2-D,
+                // 46 % in 3-D, 1.6 % in 8-D (still cheap next to the search).
+                let d: [f64; N] = core::array::from_fn(|_| 2.0 * self.radius * symmetric(rng));
+                let n2 = norm_squared(&d);
+                if n2 >= self.radius_squared && n2 < 4.0 * self.radius_squared {
+                    return d;
+                }
+            },
+            Candidates::Sphere => {
+                let distance = self.radius * (1.0 + SPHERE_SLACK);
+                if N == 2 {
+                    let (c, s) = self.step;
+                    let here = *state;
+                    state[0] = c * here[0] - s * here[1];
+                    state[1] = s * here[0] + c * here[1];
+                    scale(&here, distance)
+                } else {
+                    scale(&unit_direction::<N, R>(rng), distance)
+                }
+            }
+        }
+    }
+}
+
+/// A uniform direction on the unit sphere, by rejection from the cube and
+/// normalisation (`sqrt` is correctly rounded, so this is reproducible).
+#[inline(always)]
+fn unit_direction<const N: usize, R: Rng + ?Sized>(rng: &mut R) -> [f64; N] {
+    if N == 1 {
+        return [if unit(rng) < 0.5 { -1.0 } else { 1.0 }; N];
+    }
+    loop {
+        let v: [f64; N] = core::array::from_fn(|_| symmetric(rng));
+        let n2 = norm_squared(&v);
+        // Tiny vectors are dropped so normalising loses no precision.
+        if (1.0 / 64.0..1.0).contains(&n2) {
+            return scale(&v, 1.0 / n2.sqrt());
+        }
+    }
+}
+
+/// `(cos θ, sin θ)` for `0 <= θ <= 2π`, by a fixed Taylor series in basic
+/// arithmetic only, so it is bit-identical on every platform. Accurate to
+/// about 1e-15, ample for spacing candidate directions.
+fn cos_sin(theta: f64) -> (f64, f64) {
+    // Reduce to |x| <= π/4 by quarter turns, then sum the series.
+    let quarter = core::f64::consts::FRAC_PI_2;
+    let turns = (theta / quarter).round();
+    let x = theta - turns * quarter;
+    let x2 = x * x;
+    let (mut c, mut s) = (1.0, x);
+    let (mut tc, mut ts) = (1.0, x);
+    for n in 1..12 {
+        let n = f64::from(n);
+        tc *= -x2 / ((2.0 * n - 1.0) * (2.0 * n));
+        ts *= -x2 / ((2.0 * n) * (2.0 * n + 1.0));
+        c += tc;
+        s += ts;
+    }
+    // `turns` is 0..=4 here, so the rem_euclid result fits any integer.
+    match turns.rem_euclid(4.0) {
+        0.0 => (c, s),
+        1.0 => (-s, c),
+        2.0 => (-c, -s),
+        _ => (s, -c),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::random::seeded_rng;
+
+    #[test]
+    fn cos_sin_matches_libm() {
+        for i in 0..=64 {
+            let t = core::f64::consts::TAU * f64::from(i) / 64.0;
+            let (c, s) = cos_sin(t);
+            assert!((c - t.cos()).abs() < 1e-14, "cos({t}) = {c}");
+            assert!((s - t.sin()).abs() < 1e-14, "sin({t}) = {s}");
+        }
+    }
+
+    fn check_offsets<const N: usize>(kind: Candidates) {
+        let r = 0.3;
+        let sampler = CandidateSampler::<N>::new(kind, r, 30);
+        let mut rng = seeded_rng(9);
+        let mut state = sampler.start(&mut rng);
+        for _ in 0..2000 {
+            let d = sampler.offset(&mut rng, &mut state);
+            let len = norm_squared(&d).sqrt();
+            match kind {
+                Candidates::Annulus => {
+                    assert!(len >= r * (1.0 - 1e-12) && len < 2.0 * r, "N={N} len {len}");
+                }
+                Candidates::Sphere => {
+                    assert!((len / r - 1.0 - SPHERE_SLACK).abs() < 1e-9, "N={N} len {len}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn offsets_have_the_documented_length() {
+        for kind in [Candidates::Annulus, Candidates::Sphere] {
+            check_offsets::<1>(kind);
+            check_offsets::<2>(kind);
+            check_offsets::<3>(kind);
+            check_offsets::<5>(kind);
+            check_offsets::<8>(kind);
+        }
+    }
+
+    #[test]
+    fn annulus_is_uniform_in_volume_2d() {
+        // Uniform in area over r..2r: P(|d| < 1.5r) = (1.5² - 1) / (4 - 1).
+        let sampler = CandidateSampler::<2>::new(Candidates::Annulus, 1.0, 30);
+        let mut rng = seeded_rng(3);
+        let mut state = [0.0; 2];
+        let n = 100_000;
+        let inner = (0..n)
+            .filter(|_| norm_squared(&sampler.offset(&mut rng, &mut state)) < 2.25)
+            .count();
+        let share = f64::from(u32::try_from(inner).unwrap()) / f64::from(n);
+        assert!((share - 1.25 / 3.0).abs() < 0.01, "share inside 1.5r: {share}");
+    }
+}

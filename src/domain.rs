@@ -1,0 +1,190 @@
+//! The sampling domain: an axis-aligned, half-open box, each axis optionally
+//! periodic.
+
+use crate::error::Error;
+
+/// An axis-aligned box `lo <= x < hi`, each axis optionally periodic.
+///
+/// Every emitted point lies in the half-open box: a coordinate can equal
+/// `lo` but never `hi`. On a periodic (toroidal) axis distances wrap: the
+/// difference between two coordinates is `min(|Δ|, L - |Δ|)` with
+/// `L = hi - lo`, so the pattern tiles seamlessly.
+///
+/// # Example: a periodic unit square
+/// ```
+/// use bridson::Domain;
+/// let d = Domain::new([0.0, 0.0], [1.0, 1.0])?.with_periodic([true, true]);
+/// assert!(d.contains(&[0.0, 0.5]));
+/// assert!(!d.contains(&[1.0, 0.5]));
+/// # Ok::<(), bridson::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(try_from = "DomainRepr<N>"))]
+pub struct Domain<const N: usize> {
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_array"))]
+    lo: [f64; N],
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_array"))]
+    hi: [f64; N],
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_array"))]
+    periodic: [bool; N],
+}
+
+impl<const N: usize> Domain<N> {
+    /// The box `lo <= x < hi`, no axis periodic.
+    ///
+    /// # Errors
+    /// [`Error::ZeroDimension`] if `N == 0`; [`Error::NonFiniteBound`] if a
+    /// bound is NaN or infinite; [`Error::EmptyBox`] if `lo >= hi` on some
+    /// axis; [`Error::ExtentOverflow`] if `hi - lo` overflows.
+    pub fn new(lo: [f64; N], hi: [f64; N]) -> Result<Self, Error> {
+        if N == 0 {
+            return Err(Error::ZeroDimension);
+        }
+        for axis in 0..N {
+            let (l, h) = (lo[axis], hi[axis]);
+            if !l.is_finite() || !h.is_finite() {
+                return Err(Error::NonFiniteBound { axis });
+            }
+            if l >= h {
+                return Err(Error::EmptyBox { axis });
+            }
+            if !(h - l).is_finite() {
+                return Err(Error::ExtentOverflow { axis });
+            }
+        }
+        Ok(Self {
+            lo,
+            hi,
+            periodic: [false; N],
+        })
+    }
+
+    /// The box from the origin: `0 <= x < extent`.
+    ///
+    /// # Errors
+    /// As [`Domain::new`].
+    pub fn from_extent(extent: [f64; N]) -> Result<Self, Error> {
+        Self::new([0.0; N], extent)
+    }
+
+    /// The same box with the given axes made periodic (`true`) or bounded.
+    #[must_use]
+    pub fn with_periodic(mut self, periodic: [bool; N]) -> Self {
+        self.periodic = periodic;
+        self
+    }
+
+    /// Lower corner (inclusive).
+    pub fn lo(&self) -> [f64; N] {
+        self.lo
+    }
+
+    /// Upper corner (exclusive).
+    pub fn hi(&self) -> [f64; N] {
+        self.hi
+    }
+
+    /// Which axes are periodic.
+    pub fn periodic(&self) -> [bool; N] {
+        self.periodic
+    }
+
+    /// Whether any axis is periodic.
+    pub fn any_periodic(&self) -> bool {
+        self.periodic.iter().any(|&p| p)
+    }
+
+    /// `hi - lo` on every axis (finite and positive by construction).
+    pub fn extent(&self) -> [f64; N] {
+        core::array::from_fn(|i| self.hi[i] - self.lo[i])
+    }
+
+    /// The period of each axis: its extent if periodic, `0.0` if bounded.
+    pub(crate) fn periods(&self) -> [f64; N] {
+        core::array::from_fn(|i| {
+            if self.periodic[i] {
+                self.hi[i] - self.lo[i]
+            } else {
+                0.0
+            }
+        })
+    }
+
+    /// The box's volume (length, area, …); may overflow to infinity for
+    /// enormous boxes.
+    pub fn volume(&self) -> f64 {
+        self.extent().iter().product()
+    }
+
+    /// Whether `lo <= p < hi` on every axis.
+    pub fn contains(&self, p: &[f64; N]) -> bool {
+        (0..N).all(|i| self.lo[i] <= p[i] && p[i] < self.hi[i])
+    }
+
+    /// Maps a coordinate that left the box on a periodic axis back into it,
+    /// and reports whether the point now lies inside. Bounded axes are only
+    /// checked, never moved.
+    #[inline(always)]
+    pub(crate) fn wrap(&self, p: &mut [f64; N]) -> bool {
+        for i in 0..N {
+            let (lo, hi) = (self.lo[i], self.hi[i]);
+            if p[i] < lo || p[i] >= hi {
+                if !self.periodic[i] {
+                    return false;
+                }
+                p[i] = lo + (p[i] - lo).rem_euclid(hi - lo);
+                // Rounding can land exactly on `hi`: then the point is
+                // dropped rather than moved, keeping the box half-open.
+                if !(lo <= p[i] && p[i] < hi) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// The unchecked form read by serde before [`Domain::new`] validates it.
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+#[serde(rename = "Domain")]
+struct DomainRepr<const N: usize> {
+    #[serde(with = "crate::serde_array")]
+    lo: [f64; N],
+    #[serde(with = "crate::serde_array")]
+    hi: [f64; N],
+    #[serde(with = "crate::serde_array")]
+    periodic: [bool; N],
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize> TryFrom<DomainRepr<N>> for Domain<N> {
+    type Error = Error;
+    fn try_from(raw: DomainRepr<N>) -> Result<Self, Error> {
+        Ok(Self::new(raw.lo, raw.hi)?.with_periodic(raw.periodic))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_keeps_points_half_open() {
+        let d = Domain::new([0.0, 0.0], [1.0, 1.0])
+            .unwrap()
+            .with_periodic([true, false]);
+        let mut p = [-0.25, 0.5];
+        assert!(d.wrap(&mut p), "periodic axis wraps");
+        assert_eq!(p, [0.75, 0.5], "wrapped by one period");
+        let mut q = [1.5, 0.5];
+        assert!(d.wrap(&mut q), "wraps from above");
+        assert_eq!(q, [0.5, 0.5], "wrapped from above");
+        let mut outside = [0.5, 1.0];
+        assert!(!d.wrap(&mut outside), "bounded axis rejects hi");
+        // -1e-300 + 1 rounds to exactly 1 = hi: must be rejected, not kept.
+        let mut edge = [-1e-300, 0.5];
+        assert!(!d.wrap(&mut edge), "rounding onto hi is rejected");
+    }
+}

@@ -1,0 +1,74 @@
+//! The one error type of the crate.
+
+use core::fmt;
+
+/// Why a sampler could not be built.
+///
+/// Every constructor validates its inputs up front and returns one of these
+/// instead of panicking, aborting or running out of memory.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// Occurs when the dimension `N` is zero.
+    ZeroDimension,
+    /// Occurs when the radius is NaN, infinite, zero or negative, or so small
+    /// or large that its square is not a normal `f64` (outside about
+    /// `1e-150 ..= 1e150`), where squared distances can no longer be compared.
+    InvalidRadius,
+    /// Occurs when a bound of the box is NaN or infinite.
+    NonFiniteBound {
+        /// The first axis with a bad bound.
+        axis: usize,
+    },
+    /// Occurs when `lo >= hi` on some axis: the half-open box is empty.
+    EmptyBox {
+        /// The first empty axis.
+        axis: usize,
+    },
+    /// Occurs when `hi - lo` overflows to infinity on some axis
+    /// (for example `-1e308 .. 1e308`).
+    ExtentOverflow {
+        /// The first axis whose extent overflows.
+        axis: usize,
+    },
+    /// Occurs when the number of attempts `k` is zero.
+    ZeroAttempts,
+    /// Occurs when the background grid would need more memory than the
+    /// budget allows, on the dense layout and on the sparse one (whose size is
+    /// bounded by the most points that fit in the box, or by the point cap).
+    /// Raise the budget, cap the number of points, or grow the radius.
+    GridTooLarge {
+        /// The smallest number of bytes either layout would need, saturated
+        /// at `u64::MAX`.
+        needed: u64,
+        /// The budget in force.
+        budget: u64,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::ZeroDimension => f.write_str("the dimension N must be at least 1"),
+            Self::InvalidRadius => f.write_str(
+                "the radius must be finite, > 0 and have a normal f64 square (about 1e-150..=1e150)",
+            ),
+            Self::NonFiniteBound { axis } => {
+                write!(f, "the box bounds on axis {axis} must be finite")
+            }
+            Self::EmptyBox { axis } => {
+                write!(f, "the box is empty on axis {axis}: lo must be < hi")
+            }
+            Self::ExtentOverflow { axis } => {
+                write!(f, "the box extent hi - lo on axis {axis} overflows f64")
+            }
+            Self::ZeroAttempts => f.write_str("the number of attempts k must be at least 1"),
+            Self::GridTooLarge { needed, budget } => write!(
+                f,
+                "the background grid needs {needed} bytes, over the budget of {budget} bytes"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

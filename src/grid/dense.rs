@@ -1,0 +1,265 @@
+//! Bridson's dense background grid, with points stored inline.
+//!
+//! Each cell has side `<= r/√N`, so it can hold at most one point of a valid
+//! set, and the cell stores that point's coordinates directly
+//! (`[f64::INFINITY; N]` when empty). A neighbour check is then a run over a
+//! precomputed list of linear cell offsets, nearest first, with no
+//! indirection and no branch on emptiness: an empty cell is infinitely far.
+//!
+//! The grid is padded by the search reach on every side, so offsets never
+//! leave the array. On a periodic axis the padding holds ghost copies of the
+//! points near the opposite face (with their original coordinates: the
+//! distance itself wraps), so the same branch-free scan serves toroidal
+//! domains.
+
+use super::{DensePlan, NeighbourGrid};
+use crate::domain::Domain;
+use crate::vector::{distance_squared, periodic_distance_squared};
+
+const EMPTY: f64 = f64::INFINITY;
+
+#[derive(Debug)]
+pub(crate) struct Dense<const N: usize> {
+    cells: Vec<[f64; N]>,
+    lo: [f64; N],
+    inv_side: [f64; N],
+    /// Cells per axis inside the box.
+    counts: [usize; N],
+    pad: [usize; N],
+    stride: [usize; N],
+    /// Linear offsets of the cells that can hold a point closer than `r`,
+    /// nearest first so that a conflict is usually found in the first few.
+    offsets: Vec<isize>,
+    periods: [f64; N],
+    any_periodic: bool,
+    radius_squared: f64,
+}
+
+impl<const N: usize> Dense<N> {
+    /// Allocates the grid, or `None` if the allocation fails.
+    pub(crate) fn try_new(plan: &DensePlan<N>, domain: &Domain<N>, radius: f64) -> Option<Self> {
+        let pad = plan.reach;
+        let mut stride = [0usize; N];
+        let mut total = 1usize;
+        for i in 0..N {
+            stride[i] = total;
+            total = total.checked_mul(plan.cells[i].checked_add(2 * pad[i])?)?;
+        }
+        let mut cells = Vec::new();
+        cells.try_reserve_exact(total).ok()?;
+        cells.resize(total, [EMPTY; N]);
+        let offsets = stencil(plan, &stride, radius)?;
+        Some(Self {
+            cells,
+            lo: domain.lo(),
+            inv_side: plan.side.map(|s| 1.0 / s),
+            counts: plan.cells,
+            pad,
+            stride,
+            offsets,
+            periods: domain.periods(),
+            any_periodic: domain.any_periodic(),
+            radius_squared: radius * radius,
+        })
+    }
+
+    /// Cell of a point inside the box, clamped against rounding at `hi`.
+    #[inline(always)]
+    fn cell_of(&self, p: &[f64; N]) -> [usize; N] {
+        core::array::from_fn(|i| {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "saturating float-to-int cast, then clamped into the grid"
+            )]
+            let c = ((p[i] - self.lo[i]) * self.inv_side[i]) as usize;
+            c.min(self.counts[i] - 1)
+        })
+    }
+
+    #[inline(always)]
+    fn index(&self, padded: &[usize; N]) -> usize {
+        (0..N).map(|i| padded[i] * self.stride[i]).sum()
+    }
+
+    #[inline(always)]
+    fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> bool {
+        for &off in &self.offsets {
+            // Always Some: the padding is as wide as the largest offset.
+            let Some(q) = self.cells.get(base.wrapping_add_signed(off)) else {
+                continue;
+            };
+            let d2 = if PERIODIC {
+                periodic_distance_squared(p, q, &self.periods)
+            } else {
+                distance_squared(p, q)
+            };
+            if d2 < self.radius_squared {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Writes `p` into every ghost cell that stands for its cell across a
+    /// periodic face (several when the period is shorter than the padding).
+    fn write_images(&mut self, cell: &[usize; N], p: &[f64; N]) {
+        let home: [usize; N] = core::array::from_fn(|i| cell[i] + self.pad[i]);
+        // Per axis, the first image and the step; bounded axes have one.
+        let first: [usize; N] = core::array::from_fn(|i| {
+            if self.periods[i] > 0.0 {
+                home[i] % self.counts[i]
+            } else {
+                home[i]
+            }
+        });
+        let limit: [usize; N] = core::array::from_fn(|i| {
+            if self.periods[i] > 0.0 {
+                self.counts[i] + 2 * self.pad[i]
+            } else {
+                home[i] + 1
+            }
+        });
+        let mut at = first;
+        loop {
+            if at != home {
+                let index = self.index(&at);
+                if let Some(slot) = self.cells.get_mut(index) {
+                    *slot = *p;
+                }
+            }
+            // Odometer over the images of every axis.
+            let mut axis = 0;
+            loop {
+                if axis == N {
+                    return;
+                }
+                at[axis] += self.counts[axis];
+                if at[axis] < limit[axis] && self.periods[axis] > 0.0 {
+                    break;
+                }
+                at[axis] = first[axis];
+                axis += 1;
+            }
+        }
+    }
+}
+
+impl<const N: usize> NeighbourGrid<N> for Dense<N> {
+    #[inline(always)]
+    fn conflicts(&self, p: &[f64; N]) -> bool {
+        let cell = self.cell_of(p);
+        let base = self.index(&core::array::from_fn(|i| cell[i] + self.pad[i]));
+        if self.any_periodic {
+            self.scan::<true>(base, p)
+        } else {
+            self.scan::<false>(base, p)
+        }
+    }
+
+    #[inline(always)]
+    fn insert(&mut self, p: [f64; N]) -> bool {
+        let cell = self.cell_of(&p);
+        let base = self.index(&core::array::from_fn(|i| cell[i] + self.pad[i]));
+        match self.cells.get_mut(base) {
+            // Occupied only if rounding put two valid points in one cell:
+            // drop the newcomer, the set stays valid.
+            Some(slot) if slot[0] == EMPTY => *slot = p,
+            _ => return false,
+        }
+        if self.any_periodic {
+            self.write_images(&cell, &p);
+        }
+        true
+    }
+}
+
+/// Linear offsets of every cell `d` with `Σ (max(|d_i| - 1 - η, 0)·side_i)²
+/// < r²`: all cells that can hold a point closer than `r` to a point of the
+/// centre cell, even with each index off by the rounding margin `η`.
+fn stencil<const N: usize>(
+    plan: &DensePlan<N>,
+    stride: &[usize; N],
+    radius: f64,
+) -> Option<Vec<isize>> {
+    let r2 = radius * radius;
+    let reach: [isize; N] = core::array::from_fn(|i| isize::try_from(plan.reach[i]).unwrap_or(0));
+    let stride: [isize; N] = core::array::from_fn(|i| isize::try_from(stride[i]).unwrap_or(0));
+    let mut cells = Vec::new();
+    let mut d = reach.map(|p| -p);
+    loop {
+        let mut gap2 = 0.0;
+        let mut centre2 = 0.0;
+        for i in 0..N {
+            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+            let a = d[i].unsigned_abs() as f64;
+            let gap = (a - 1.0 - plan.eta).max(0.0) * plan.side[i];
+            gap2 += gap * gap;
+            centre2 += (a * plan.side[i]) * (a * plan.side[i]);
+        }
+        if gap2 < r2 {
+            let linear: isize = (0..N).map(|i| d[i] * stride[i]).sum();
+            cells.push((gap2, centre2, linear));
+        }
+        let mut axis = 0;
+        loop {
+            if axis == N {
+                cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+                return Some(cells.into_iter().map(|c| c.2).collect());
+            }
+            if d[axis] < reach[axis] {
+                d[axis] += 1;
+                break;
+            }
+            d[axis] = -reach[axis];
+            axis += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{GridLayout, GridPlan, plan};
+    use super::*;
+
+    fn dense<const N: usize>(domain: &Domain<N>, r: f64) -> Dense<N> {
+        match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
+            Ok(GridPlan::Dense(p)) => Dense::try_new(&p, domain, r).expect("allocates"),
+            other => panic!("no dense plan: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn stencil_sizes() {
+        // 2-D: the 5×5 block; the four corners are kept because they sit
+        // exactly at distance r, where rounding matters.
+        let g = dense(&Domain::from_extent([1.0, 1.0]).unwrap(), 0.1);
+        assert_eq!(g.offsets.len(), 25, "2-D stencil");
+        assert_eq!(g.offsets[0], 0, "own cell first");
+        let g = dense(&Domain::from_extent([1.0; 3]).unwrap(), 0.1);
+        assert_eq!(g.offsets.len(), 125, "3-D stencil");
+    }
+
+    #[test]
+    fn finds_a_neighbour_across_a_periodic_face() {
+        let d = Domain::from_extent([1.0, 1.0])
+            .unwrap()
+            .with_periodic([true, false]);
+        let mut g = dense(&d, 0.1);
+        assert!(g.insert([0.99, 0.5]), "insert");
+        assert!(g.conflicts(&[0.02, 0.5]), "wrapped distance 0.03 < 0.1");
+        assert!(!g.conflicts(&[0.2, 0.5]), "distance 0.21");
+    }
+
+    #[test]
+    fn short_period_has_several_images() {
+        // Period 0.05 < r: every point conflicts with every other.
+        let d = Domain::from_extent([0.05, 1.0])
+            .unwrap()
+            .with_periodic([true, false]);
+        let mut g = dense(&d, 0.1);
+        assert!(g.insert([0.01, 0.5]), "insert");
+        assert!(g.conflicts(&[0.04, 0.58]), "wrapped dx 0.02, dy 0.08");
+        assert!(!g.conflicts(&[0.04, 0.65]), "dy 0.15 > r");
+    }
+}

@@ -1,0 +1,222 @@
+//! The sparse background grid: a hash map from cells to the points in them.
+//!
+//! Used where a dense grid would not fit the memory budget (a huge box) or
+//! would search too many cells (4-D and above). Cells have side `≈ r`, so a
+//! cell holds a few points and a search visits only the cells whose box comes
+//! within `r` of the candidate, found by branch and bound over the axes:
+//! about `Σ_k C(N,k)·V_k` cells (9 in 2-D, 50 in 4-D, 1 170 in 8-D). Memory
+//! grows with the number of points, never with the volume of the box.
+
+use super::{NeighbourGrid, SparsePlan};
+use crate::domain::Domain;
+use crate::vector::periodic_distance_squared;
+use core::hash::{BuildHasherDefault, Hasher};
+use smallvec::SmallVec;
+use std::collections::HashMap;
+
+type Cell<const N: usize> = SmallVec<[[f64; N]; 2]>;
+
+#[derive(Debug)]
+pub(crate) struct Sparse<const N: usize> {
+    map: HashMap<[i64; N], Cell<N>, BuildHasherDefault<CellHasher>>,
+    lo: [f64; N],
+    side: [f64; N],
+    inv_side: [f64; N],
+    counts: [i64; N],
+    reach: [i64; N],
+    eta: f64,
+    periodic: [bool; N],
+    periods: [f64; N],
+    radius_squared: f64,
+}
+
+impl<const N: usize> Sparse<N> {
+    pub(crate) fn new(plan: &SparsePlan<N>, domain: &Domain<N>, radius: f64) -> Self {
+        Self {
+            map: HashMap::default(),
+            lo: domain.lo(),
+            side: plan.side,
+            inv_side: plan.side.map(|s| 1.0 / s),
+            counts: plan.cells,
+            reach: plan.reach,
+            eta: plan.eta,
+            periodic: domain.periodic(),
+            periods: domain.periods(),
+            radius_squared: radius * radius,
+        }
+    }
+
+    #[inline(always)]
+    fn cell_of(&self, p: &[f64; N]) -> [i64; N] {
+        core::array::from_fn(|i| {
+            #[expect(
+                clippy::cast_possible_truncation,
+                reason = "saturating float-to-int cast, then clamped into the grid"
+            )]
+            let c = ((p[i] - self.lo[i]) * self.inv_side[i]) as i64;
+            c.clamp(0, self.counts[i] - 1)
+        })
+    }
+
+    /// Depth-first over the axes: picks the neighbour cell's index on
+    /// `axis`, keeping only those whose lower bound on the distance so far
+    /// (`partial`) stays below `r²`.
+    fn visit(
+        &self,
+        axis: usize,
+        cell: &[i64; N],
+        offset: &[f64; N],
+        key: &mut [i64; N],
+        partial: f64,
+        p: &[f64; N],
+    ) -> bool {
+        if axis == N {
+            return self.map.get(key).is_some_and(|points| {
+                points
+                    .iter()
+                    .any(|q| periodic_distance_squared(p, q, &self.periods) < self.radius_squared)
+            });
+        }
+        let (m, reach, c) = (self.counts[axis], self.reach[axis], cell[axis]);
+        if self.periodic[axis] && 2 * reach + 1 >= m {
+            // The reach wraps onto itself: visit each cell once, no bound.
+            for k in 0..m {
+                key[axis] = k;
+                if self.visit(axis + 1, cell, offset, key, partial, p) {
+                    return true;
+                }
+            }
+            return false;
+        }
+        let (side, t) = (self.side[axis], offset[axis]);
+        // Offsets 0, -1, 1, -2, 2, …: nearest first, for an early exit.
+        for j in 0..=2 * reach {
+            let d = if j % 2 == 1 { -(j + 1) / 2 } else { j / 2 };
+            #[expect(clippy::cast_precision_loss, reason = "cell indices are <= 2^40")]
+            let gap = match d {
+                0 => 0.0,
+                d if d > 0 => ((c + d) as f64 - self.eta) * side - t,
+                d => t - ((c + d + 1) as f64 + self.eta) * side,
+            }
+            .max(0.0);
+            let bound = partial + gap * gap;
+            if bound >= self.radius_squared {
+                continue;
+            }
+            let mut k = c + d;
+            if self.periodic[axis] {
+                k = k.rem_euclid(m);
+            } else if k < 0 || k >= m {
+                continue;
+            }
+            key[axis] = k;
+            if self.visit(axis + 1, cell, offset, key, bound, p) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
+    fn conflicts(&self, p: &[f64; N]) -> bool {
+        let cell = self.cell_of(p);
+        let offset: [f64; N] = core::array::from_fn(|i| p[i] - self.lo[i]);
+        let mut key = [0i64; N];
+        self.visit(0, &cell, &offset, &mut key, 0.0, p)
+    }
+
+    fn insert(&mut self, p: [f64; N]) -> bool {
+        let cell = self.cell_of(&p);
+        self.map.entry(cell).or_default().push(p);
+        true
+    }
+}
+
+/// A small multiplicative hasher for integer cell keys (in the manner of
+/// FxHash, with a final mix so that the low bits used for buckets depend on
+/// every input bit). Keys are not attacker-controlled secrets, and SipHash
+/// would cost more than the whole distance check.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CellHasher(u64);
+
+impl CellHasher {
+    const K: u64 = 0xf135_7aea_2e62_a9c5;
+
+    #[inline(always)]
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(26) ^ word).wrapping_mul(Self::K);
+    }
+}
+
+impl Hasher for CellHasher {
+    #[inline(always)]
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            if let Some(head) = word.get_mut(..chunk.len()) {
+                head.copy_from_slice(chunk);
+            }
+            self.add(u64::from_le_bytes(word));
+        }
+    }
+
+    #[inline(always)]
+    fn write_u64(&mut self, word: u64) {
+        self.add(word);
+    }
+
+    #[inline(always)]
+    fn write_usize(&mut self, word: usize) {
+        self.add(word as u64);
+    }
+
+    #[inline(always)]
+    fn finish(&self) -> u64 {
+        let mut x = self.0;
+        x ^= x >> 32;
+        x = x.wrapping_mul(Self::K);
+        x ^ (x >> 29)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{GridLayout, GridPlan, plan};
+    use super::*;
+
+    fn sparse<const N: usize>(domain: &Domain<N>, r: f64) -> Sparse<N> {
+        match plan(domain, r, GridLayout::Sparse, 1 << 30, None) {
+            Ok(GridPlan::Sparse(p)) => Sparse::new(&p, domain, r),
+            other => panic!("no sparse plan: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn finds_neighbours_in_every_direction() {
+        let d = Domain::from_extent([1.0; 3]).unwrap();
+        // Dyadic values: 0.5 ± 0.125 is exactly r away.
+        let mut g = sparse(&d, 0.125);
+        assert!(g.insert([0.5, 0.5, 0.5]), "insert");
+        for axis in 0..3 {
+            for sign in [-1.0, 1.0] {
+                let mut q = [0.5; 3];
+                q[axis] += sign * 0.124;
+                assert!(g.conflicts(&q), "axis {axis} sign {sign}");
+                q[axis] = 0.5 + sign * 0.125;
+                assert!(!g.conflicts(&q), "exactly r is allowed: axis {axis}");
+            }
+        }
+    }
+
+    #[test]
+    fn wraps_on_periodic_axes() {
+        let d = Domain::from_extent([1.0, 0.25])
+            .unwrap()
+            .with_periodic([true, true]);
+        let mut g = sparse(&d, 0.1);
+        assert!(g.insert([0.99, 0.01]), "insert");
+        assert!(g.conflicts(&[0.02, 0.24]), "both axes wrap");
+        assert!(!g.conflicts(&[0.5, 0.12]), "far");
+    }
+}

@@ -1,0 +1,83 @@
+//! Small `[f64; N]` helpers, written once for every dimension.
+
+/// Squared Euclidean distance, summed in axis order.
+///
+/// The order is part of the contract: the minimum-distance check and any
+/// independent checker that sums `(a[i] - b[i])²` from axis 0 upwards get
+/// bit-identical results.
+#[inline(always)]
+pub(crate) fn distance_squared<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    let mut acc = 0.0;
+    for i in 0..N {
+        let d = a[i] - b[i];
+        acc += d * d;
+    }
+    acc
+}
+
+/// Squared toroidal distance: on axis `i` with `period[i] > 0` the
+/// difference is `min(|Δ|, period - |Δ|)`, the nearest image for points
+/// inside one period; other axes (period `0.0`) use the plain difference.
+#[inline(always)]
+pub(crate) fn periodic_distance_squared<const N: usize>(
+    a: &[f64; N],
+    b: &[f64; N],
+    period: &[f64; N],
+) -> f64 {
+    let mut acc = 0.0;
+    for i in 0..N {
+        let mut d = (a[i] - b[i]).abs();
+        if period[i] > 0.0 {
+            d = d.min(period[i] - d);
+        }
+        acc += d * d;
+    }
+    acc
+}
+
+/// Whether every component is finite.
+pub(crate) fn all_finite<const N: usize>(a: &[f64; N]) -> bool {
+    a.iter().all(|x| x.is_finite())
+}
+
+/// Component-wise `a + b`.
+#[inline(always)]
+pub(crate) fn add<const N: usize>(a: &[f64; N], b: &[f64; N]) -> [f64; N] {
+    core::array::from_fn(|i| a[i] + b[i])
+}
+
+/// `‖a‖²`.
+#[inline(always)]
+pub(crate) fn norm_squared<const N: usize>(a: &[f64; N]) -> f64 {
+    a.iter().map(|x| x * x).sum()
+}
+
+/// Component-wise `a * s`.
+#[inline(always)]
+pub(crate) fn scale<const N: usize>(a: &[f64; N], s: f64) -> [f64; N] {
+    a.map(|x| x * s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn periodic_distance_takes_the_nearest_image() {
+        let period = [1.0, 0.0];
+        let a = [0.05, 0.5];
+        let b = [0.95, 0.5];
+        let d2 = periodic_distance_squared(&a, &b, &period);
+        assert!((d2 - 0.01).abs() < 1e-15, "wrapped distance², got {d2}");
+        assert!((distance_squared(&a, &b) - 0.81).abs() < 1e-15, "plain distance²");
+    }
+
+    #[test]
+    fn infinite_sentinel_is_never_close() {
+        let empty = [f64::INFINITY; 3];
+        let p = [0.1, 0.2, 0.3];
+        assert!(distance_squared(&p, &empty) == f64::INFINITY, "plain");
+        let d2 = periodic_distance_squared(&p, &empty, &[1.0, 1.0, 1.0]);
+        assert!(d2 == f64::INFINITY, "periodic: {d2}");
+    }
+}
