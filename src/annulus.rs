@@ -1,6 +1,6 @@
 //! Where candidates are thrown around an active point.
 
-use crate::random::{symmetric, unit};
+use crate::random::{symmetric, symmetric_pair, unit};
 use crate::vector::{norm_squared, scale};
 use rand::Rng;
 
@@ -71,7 +71,7 @@ impl<const N: usize> CandidateSampler<N> {
                 // Uniform in the cube [-2r, 2r)^N, kept if r <= |d| < 2r:
                 // uniform in volume over the shell. Acceptance: 59 % in 2-D,
                 // 46 % in 3-D, 1.6 % in 8-D (still cheap next to the search).
-                let d: [f64; N] = core::array::from_fn(|_| 2.0 * self.radius * symmetric(rng));
+                let d: [f64; N] = cube_point(rng, 2.0 * self.radius);
                 let n2 = norm_squared(&d);
                 if n2 >= self.radius_squared && n2 < 4.0 * self.radius_squared {
                     return d;
@@ -93,6 +93,23 @@ impl<const N: usize> CandidateSampler<N> {
     }
 }
 
+/// A uniform point in the cube `[-half, half)^N`, two coordinates per
+/// generator call.
+#[inline(always)]
+fn cube_point<const N: usize, R: Rng + ?Sized>(rng: &mut R, half: f64) -> [f64; N] {
+    let mut d = [0.0; N];
+    let mut pairs = d.chunks_exact_mut(2);
+    for pair in &mut pairs {
+        let (a, b) = symmetric_pair(rng);
+        pair[0] = a * half;
+        pair[1] = b * half;
+    }
+    for last in pairs.into_remainder() {
+        *last = symmetric(rng) * half;
+    }
+    d
+}
+
 /// A uniform direction on the unit sphere, by rejection from the cube and
 /// normalisation (`sqrt` is correctly rounded, so this is reproducible).
 #[inline(always)]
@@ -101,7 +118,7 @@ fn unit_direction<const N: usize, R: Rng + ?Sized>(rng: &mut R) -> [f64; N] {
         return [if unit(rng) < 0.5 { -1.0 } else { 1.0 }; N];
     }
     loop {
-        let v: [f64; N] = core::array::from_fn(|_| symmetric(rng));
+        let v: [f64; N] = cube_point(rng, 1.0);
         let n2 = norm_squared(&v);
         // Tiny vectors are dropped so normalising loses no precision.
         if (1.0 / 64.0..1.0).contains(&n2) {
