@@ -182,7 +182,10 @@ mod tests {
                     assert!(len >= r * (1.0 - 1e-12) && len < 2.0 * r, "N={N} len {len}");
                 }
                 Candidates::Sphere => {
-                    assert!((len / r - 1.0 - SPHERE_SLACK).abs() < 1e-9, "N={N} len {len}");
+                    assert!(
+                        (len / r - 1.0 - SPHERE_SLACK).abs() < 1e-9,
+                        "N={N} len {len}"
+                    );
                 }
             }
         }
@@ -210,6 +213,9 @@ mod tests {
             .filter(|_| norm_squared(&sampler.offset(&mut rng, &mut state)) < 2.25)
             .count();
         let share = f64::from(u32::try_from(inner).unwrap()) / f64::from(n);
-        assert!((share - 1.25 / 3.0).abs() < 0.01, "share inside 1.5r: {share}");
+        assert!(
+            (share - 1.25 / 3.0).abs() < 0.01,
+            "share inside 1.5r: {share}"
+        );
     }
 }

@@ -22,10 +22,10 @@ const MAX_RADIUS: f64 = 1e150;
 /// A validated Poisson disk sampler in `N` dimensions: domain, radius,
 /// attempts, candidate distribution and grid choice.
 ///
-/// Build it with [`PoissonDisk::new`] and the `with_*` methods (each checks
-/// its input), then draw points with [`iter`](Self::iter) /
-/// [`iter_seeded`](Self::iter_seeded) or collect them with
-/// [`generate`](Self::generate) / [`generate_seeded`](Self::generate_seeded).
+/// Build it with [`PoissonDisk::new`] (defaults for everything but the
+/// domain and radius) or [`PoissonDisk::builder`], then draw points with
+/// [`iter`](Self::iter) / [`iter_seeded`](Self::iter_seeded) or collect them
+/// with [`generate`](Self::generate) / [`generate_seeded`](Self::generate_seeded).
 ///
 /// `N` is a const parameter: points are `[f64; N]`. The aliases
 /// [`PoissonDisk2`] and [`PoissonDisk3`] name the common cases.
@@ -34,9 +34,10 @@ const MAX_RADIUS: f64 = 1e150;
 /// ```
 /// use bridson::{Candidates, Domain, PoissonDisk3};
 /// let domain = Domain::from_extent([1.0, 1.0, 1.0])?.with_periodic([true; 3]);
-/// let sampler = PoissonDisk3::new(domain, 0.2)?
-///     .with_attempts(20)?
-///     .with_candidates(Candidates::Sphere);
+/// let sampler = PoissonDisk3::builder(domain, 0.2)
+///     .attempts(20)
+///     .candidates(Candidates::Sphere)
+///     .build()?;
 /// let points = sampler.generate_seeded(42);
 /// assert!(points.len() > 50);
 /// assert!(points.iter().all(|p| domain.contains(p)));
@@ -44,16 +45,9 @@ const MAX_RADIUS: f64 = 1e150;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(try_from = "PoissonDiskRepr<N>"))]
+#[cfg_attr(feature = "serde", serde(try_from = "Builder<N>", into = "Builder<N>"))]
 pub struct PoissonDisk<const N: usize> {
-    domain: Domain<N>,
-    radius: f64,
-    attempts: u32,
-    candidates: Candidates,
-    layout: GridLayout,
-    max_grid_bytes: u64,
-    max_points: Option<u64>,
-    #[cfg_attr(feature = "serde", serde(skip_serializing))]
+    config: Builder<N>,
     plan: GridPlan<N>,
 }
 
@@ -62,147 +56,190 @@ pub type PoissonDisk2 = PoissonDisk<2>;
 /// A sampler in space.
 pub type PoissonDisk3 = PoissonDisk<3>;
 
-impl<const N: usize> PoissonDisk<N> {
-    /// A sampler of `domain` with minimum distance `radius`, `k = 30`
-    /// annulus candidates, automatic grid layout and the default 1 GiB grid
-    /// budget ([`DEFAULT_MAX_GRID_BYTES`](crate::DEFAULT_MAX_GRID_BYTES)).
-    ///
-    /// # Errors
-    /// [`Error::InvalidRadius`] if `radius` is NaN, infinite, `<= 0` or
-    /// outside `1e-150 ..= 1e150`; [`Error::GridTooLarge`] if no grid fits
-    /// the budget (a tiny radius in a huge box: cap the points with
-    /// [`with_max_points`](Self::with_max_points) or raise the budget).
-    pub fn new(domain: Domain<N>, radius: f64) -> Result<Self, Error> {
-        Self::validated(
-            domain,
-            radius,
-            DEFAULT_ATTEMPTS,
-            Candidates::default(),
-            GridLayout::default(),
-            DEFAULT_MAX_GRID_BYTES,
-            None,
-        )
-    }
+/// The settings of a [`PoissonDisk`], checked together by
+/// [`build`](Self::build).
+///
+/// Setting a value never fails; `build` validates everything at once, so a
+/// point cap or a larger budget can make feasible what the defaults would
+/// reject. With the `serde` feature this is the serialised form of a
+/// sampler; absent fields take their defaults.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename = "PoissonDisk"))]
+pub struct Builder<const N: usize> {
+    domain: Domain<N>,
+    radius: f64,
+    #[cfg_attr(feature = "serde", serde(default = "default_attempts"))]
+    attempts: u32,
+    #[cfg_attr(feature = "serde", serde(default))]
+    candidates: Candidates,
+    #[cfg_attr(feature = "serde", serde(default))]
+    layout: GridLayout,
+    #[cfg_attr(feature = "serde", serde(default = "default_budget"))]
+    max_grid_bytes: u64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    max_points: Option<u64>,
+}
 
-    fn validated(
-        domain: Domain<N>,
-        radius: f64,
-        attempts: u32,
-        candidates: Candidates,
-        layout: GridLayout,
-        max_grid_bytes: u64,
-        max_points: Option<u64>,
-    ) -> Result<Self, Error> {
-        if N == 0 {
-            return Err(Error::ZeroDimension);
-        }
-        // Re-checked here because deserialisation can build a Domain too.
-        let domain = Domain::new(domain.lo(), domain.hi())?.with_periodic(domain.periodic());
-        if !(MIN_RADIUS..=MAX_RADIUS).contains(&radius) {
-            return Err(Error::InvalidRadius);
-        }
-        if attempts == 0 {
-            return Err(Error::ZeroAttempts);
-        }
-        let plan = plan(&domain, radius, layout, max_grid_bytes, max_points)?;
-        Ok(Self {
-            domain,
-            radius,
-            attempts,
-            candidates,
-            layout,
-            max_grid_bytes,
-            max_points,
-            plan,
-        })
-    }
+#[cfg(feature = "serde")]
+fn default_attempts() -> u32 {
+    DEFAULT_ATTEMPTS
+}
 
-    fn revalidated(self) -> Result<Self, Error> {
-        Self::validated(
-            self.domain,
-            self.radius,
-            self.attempts,
-            self.candidates,
-            self.layout,
-            self.max_grid_bytes,
-            self.max_points,
-        )
-    }
+#[cfg(feature = "serde")]
+fn default_budget() -> u64 {
+    DEFAULT_MAX_GRID_BYTES
+}
 
-    /// Sets `k`, the attempts around an active point before it retires.
-    /// More attempts pack denser and cost more; 30 is Bridson's choice.
-    ///
-    /// # Errors
-    /// [`Error::ZeroAttempts`] if `k == 0`.
-    pub fn with_attempts(mut self, k: u32) -> Result<Self, Error> {
-        self.attempts = k;
-        self.revalidated()
-    }
-
-    /// Sets how candidates are drawn (see [`Candidates`]).
+impl<const N: usize> Builder<N> {
+    /// Sets `k`, the attempts around an active point before it retires
+    /// (default 30, Bridson's choice). More attempts pack denser and cost
+    /// more.
     #[must_use]
-    pub fn with_candidates(mut self, candidates: Candidates) -> Self {
+    pub fn attempts(mut self, k: u32) -> Self {
+        self.attempts = k;
+        self
+    }
+
+    /// Sets how candidates are drawn (default [`Candidates::Annulus`]).
+    #[must_use]
+    pub fn candidates(mut self, candidates: Candidates) -> Self {
         self.candidates = candidates;
         self
     }
 
-    /// Chooses the grid layout (see [`GridLayout`]). The layout changes
-    /// speed and memory, never the points: both search exactly.
-    ///
-    /// # Errors
-    /// [`Error::GridTooLarge`] if the chosen layout does not fit the budget.
-    pub fn with_layout(mut self, layout: GridLayout) -> Result<Self, Error> {
+    /// Chooses the grid layout (default [`GridLayout::Auto`]). The layout
+    /// changes speed and memory, not the points: both search exactly.
+    #[must_use]
+    pub fn layout(mut self, layout: GridLayout) -> Self {
         self.layout = layout;
-        self.revalidated()
+        self
     }
 
-    /// Sets the memory budget of the background grid, in bytes.
-    ///
-    /// # Errors
-    /// [`Error::GridTooLarge`] if no layout fits the new budget.
-    pub fn with_max_grid_bytes(mut self, bytes: u64) -> Result<Self, Error> {
+    /// Sets the memory budget of the background grid in bytes (default
+    /// [`DEFAULT_MAX_GRID_BYTES`](crate::DEFAULT_MAX_GRID_BYTES), 1 GiB).
+    #[must_use]
+    pub fn max_grid_bytes(mut self, bytes: u64) -> Self {
         self.max_grid_bytes = bytes;
-        self.revalidated()
+        self
     }
 
-    /// Stops after `cap` points (`None`: until the domain is full). A cap
-    /// also bounds the sparse grid's memory, so it can make a huge domain
-    /// feasible.
+    /// Stops after `cap` points (default `None`: until the domain is full).
+    /// A cap also bounds the sparse grid's memory, so it can make a huge
+    /// domain feasible.
+    #[must_use]
+    pub fn max_points(mut self, cap: Option<u64>) -> Self {
+        self.max_points = cap;
+        self
+    }
+
+    /// Checks every setting and sizes the grid.
     ///
     /// # Errors
-    /// [`Error::GridTooLarge`] if no layout fits the budget even so.
-    pub fn with_max_points(mut self, cap: Option<u64>) -> Result<Self, Error> {
-        self.max_points = cap;
-        self.revalidated()
+    /// [`Error::ZeroDimension`] if `N == 0`; the [`Domain::new`] errors if
+    /// the domain was deserialised from bad values;
+    /// [`Error::InvalidRadius`] if the radius is NaN, infinite, `<= 0` or
+    /// outside `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
+    /// [`Error::GridTooLarge`] if no grid layout fits the budget (a tiny
+    /// radius in a huge box: cap the points or raise the budget).
+    pub fn build(self) -> Result<PoissonDisk<N>, Error> {
+        if N == 0 {
+            return Err(Error::ZeroDimension);
+        }
+        // Re-checked: deserialisation can produce any Domain.
+        let d = self.domain;
+        let domain = Domain::new(d.lo(), d.hi())?.with_periodic(d.periodic());
+        if !(MIN_RADIUS..=MAX_RADIUS).contains(&self.radius) {
+            return Err(Error::InvalidRadius);
+        }
+        if self.attempts == 0 {
+            return Err(Error::ZeroAttempts);
+        }
+        let plan = plan(
+            &domain,
+            self.radius,
+            self.layout,
+            self.max_grid_bytes,
+            self.max_points,
+        )?;
+        Ok(PoissonDisk {
+            config: Self { domain, ..self },
+            plan,
+        })
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize> TryFrom<Builder<N>> for PoissonDisk<N> {
+    type Error = Error;
+    fn try_from(builder: Builder<N>) -> Result<Self, Error> {
+        builder.build()
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<const N: usize> From<PoissonDisk<N>> for Builder<N> {
+    fn from(sampler: PoissonDisk<N>) -> Self {
+        sampler.config
+    }
+}
+
+impl<const N: usize> PoissonDisk<N> {
+    /// A sampler of `domain` with minimum distance `radius` and the
+    /// defaults: `k = 30` annulus candidates, automatic grid layout, a
+    /// 1 GiB grid budget, no point cap.
+    ///
+    /// # Errors
+    /// As [`Builder::build`].
+    pub fn new(domain: Domain<N>, radius: f64) -> Result<Self, Error> {
+        Self::builder(domain, radius).build()
+    }
+
+    /// Settings to adjust before [`Builder::build`] checks them together.
+    pub fn builder(domain: Domain<N>, radius: f64) -> Builder<N> {
+        Builder {
+            domain,
+            radius,
+            attempts: DEFAULT_ATTEMPTS,
+            candidates: Candidates::default(),
+            layout: GridLayout::default(),
+            max_grid_bytes: DEFAULT_MAX_GRID_BYTES,
+            max_points: None,
+        }
+    }
+
+    /// The settings this sampler was built from, to adjust and rebuild.
+    pub fn to_builder(&self) -> Builder<N> {
+        self.config
     }
 
     /// The domain.
     pub fn domain(&self) -> &Domain<N> {
-        &self.domain
+        &self.config.domain
     }
 
     /// The minimum distance between points.
     pub fn radius(&self) -> f64 {
-        self.radius
+        self.config.radius
     }
 
     /// The attempts `k`.
     pub fn attempts(&self) -> u32 {
-        self.attempts
+        self.config.attempts
     }
 
     /// The candidate distribution.
     pub fn candidates(&self) -> Candidates {
-        self.candidates
+        self.config.candidates
     }
 
     /// The layout asked for (possibly [`GridLayout::Auto`]).
     pub fn layout(&self) -> GridLayout {
-        self.layout
+        self.config.layout
     }
 
-    /// The layout that will be built: [`GridLayout::Dense`] or
-    /// [`GridLayout::Sparse`].
+    /// The layout planned: [`GridLayout::Dense`] or [`GridLayout::Sparse`].
+    /// [`Iter::layout`] tells what was actually built.
     pub fn resolved_layout(&self) -> GridLayout {
         match self.plan {
             GridPlan::Dense(_) => GridLayout::Dense,
@@ -212,12 +249,12 @@ impl<const N: usize> PoissonDisk<N> {
 
     /// The grid memory budget, in bytes.
     pub fn max_grid_bytes(&self) -> u64 {
-        self.max_grid_bytes
+        self.config.max_grid_bytes
     }
 
     /// The point cap.
     pub fn max_points(&self) -> Option<u64> {
-        self.max_points
+        self.config.max_points
     }
 
     /// The planned size of the background grid in bytes: exact for the
@@ -234,16 +271,17 @@ impl<const N: usize> PoissonDisk<N> {
     ///
     /// The grid is allocated here. Should the dense allocation fail, the
     /// sampler falls back to the sparse layout (same points) rather than
-    /// abort.
+    /// abort; [`Iter::layout`] reports it.
     pub fn iter<R: Rng>(&self, rng: R) -> Iter<N, R> {
+        let c = &self.config;
         Iter {
             rng,
-            domain: self.domain,
-            grid: Grid::build(&self.plan, &self.domain, self.radius),
+            domain: c.domain,
+            grid: Grid::build(&self.plan, &c.domain, c.radius),
             active: Vec::new(),
-            candidates: CandidateSampler::new(self.candidates, self.radius, self.attempts),
-            attempts: self.attempts,
-            remaining: self.max_points.map_or(u64::MAX, |c| c),
+            candidates: CandidateSampler::new(c.candidates, c.radius, c.attempts),
+            attempts: c.attempts,
+            remaining: c.max_points.unwrap_or(u64::MAX),
             started: false,
         }
     }
@@ -262,51 +300,6 @@ impl<const N: usize> PoissonDisk<N> {
     /// All points for `seed` (see [`iter_seeded`](Self::iter_seeded)).
     pub fn generate_seeded(&self, seed: u64) -> Vec<[f64; N]> {
         self.iter_seeded(seed).collect()
-    }
-}
-
-/// The unchecked form read by serde before validation.
-#[cfg(feature = "serde")]
-#[derive(serde::Deserialize)]
-#[serde(rename = "PoissonDisk")]
-struct PoissonDiskRepr<const N: usize> {
-    domain: Domain<N>,
-    radius: f64,
-    #[serde(default = "default_attempts")]
-    attempts: u32,
-    #[serde(default)]
-    candidates: Candidates,
-    #[serde(default)]
-    layout: GridLayout,
-    #[serde(default = "default_budget")]
-    max_grid_bytes: u64,
-    #[serde(default)]
-    max_points: Option<u64>,
-}
-
-#[cfg(feature = "serde")]
-fn default_attempts() -> u32 {
-    DEFAULT_ATTEMPTS
-}
-
-#[cfg(feature = "serde")]
-fn default_budget() -> u64 {
-    DEFAULT_MAX_GRID_BYTES
-}
-
-#[cfg(feature = "serde")]
-impl<const N: usize> TryFrom<PoissonDiskRepr<N>> for PoissonDisk<N> {
-    type Error = Error;
-    fn try_from(raw: PoissonDiskRepr<N>) -> Result<Self, Error> {
-        Self::validated(
-            raw.domain,
-            raw.radius,
-            raw.attempts,
-            raw.candidates,
-            raw.layout,
-            raw.max_grid_bytes,
-            raw.max_points,
-        )
     }
 }
 
@@ -383,6 +376,18 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
 
 impl<const N: usize, R: Rng> FusedIterator for Iter<N, R> {}
 
+impl<const N: usize, R> Iter<N, R> {
+    /// The grid layout actually built: [`GridLayout::Dense`] or
+    /// [`GridLayout::Sparse`] (the latter also when a dense allocation
+    /// failed and the sampler fell back).
+    pub fn layout(&self) -> GridLayout {
+        match self.grid {
+            Grid::Dense(_) => GridLayout::Dense,
+            Grid::Sparse(_) => GridLayout::Sparse,
+        }
+    }
+}
+
 /// The parts of [`Iter`] the growth loop mutates, borrowed apart from the
 /// grid so the loop can be monomorphised per grid layout.
 struct State<'a, const N: usize, R> {
@@ -439,13 +444,32 @@ mod tests {
 
     #[test]
     fn cap_stops_the_stream() {
-        let s = PoissonDisk2::new(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01)
-            .unwrap()
-            .with_max_points(Some(10))
+        let s = PoissonDisk2::builder(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01)
+            .max_points(Some(10))
+            .build()
             .unwrap();
         let mut it = s.iter_seeded(1);
         assert_eq!(it.by_ref().count(), 10, "cap");
         assert_eq!(it.next(), None, "fused");
+    }
+
+    #[test]
+    fn a_cap_rescues_a_huge_box() {
+        let huge = Domain::from_extent([1e6, 1e6]).unwrap();
+        assert!(
+            matches!(
+                PoissonDisk2::new(huge, 1e-3),
+                Err(Error::GridTooLarge { .. })
+            ),
+            "uncapped"
+        );
+        let capped = PoissonDisk2::builder(huge, 1e-3)
+            .max_points(Some(100))
+            .build()
+            .unwrap();
+        let mut it = capped.iter_seeded(3);
+        assert_eq!(it.layout(), GridLayout::Sparse, "sparse");
+        assert_eq!(it.by_ref().count(), 100, "capped count");
     }
 
     #[test]

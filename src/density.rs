@@ -44,7 +44,8 @@ pub fn relative_radius<const N: usize>(radius: f64, count: usize, volume: f64) -
     #[expect(clippy::cast_precision_loss, reason = "a count, ratio only")]
     let per_point = volume / count as f64;
     // count balls of radius r_max/2 fill `density` of the volume.
-    let half = (density * per_point / unit_ball_volume(N)).powf(1.0 / f64::from(u32::try_from(N).ok()?));
+    let half =
+        (density * per_point / unit_ball_volume(N)).powf(1.0 / f64::from(u32::try_from(N).ok()?));
     Some(radius / (2.0 * half))
 }
 

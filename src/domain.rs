@@ -127,16 +127,17 @@ impl<const N: usize> Domain<N> {
     /// checked, never moved.
     #[inline(always)]
     pub(crate) fn wrap(&self, p: &mut [f64; N]) -> bool {
-        for i in 0..N {
-            let (lo, hi) = (self.lo[i], self.hi[i]);
-            if p[i] < lo || p[i] >= hi {
-                if !self.periodic[i] {
+        for (((x, &lo), &hi), &periodic) in
+            p.iter_mut().zip(&self.lo).zip(&self.hi).zip(&self.periodic)
+        {
+            if *x < lo || *x >= hi {
+                if !periodic {
                     return false;
                 }
-                p[i] = lo + (p[i] - lo).rem_euclid(hi - lo);
+                *x = lo + (*x - lo).rem_euclid(hi - lo);
                 // Rounding can land exactly on `hi`: then the point is
                 // dropped rather than moved, keeping the box half-open.
-                if !(lo <= p[i] && p[i] < hi) {
+                if !(lo <= *x && *x < hi) {
                     return false;
                 }
             }

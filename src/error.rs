@@ -63,6 +63,10 @@ impl fmt::Display for Error {
                 write!(f, "the box extent hi - lo on axis {axis} overflows f64")
             }
             Self::ZeroAttempts => f.write_str("the number of attempts k must be at least 1"),
+            Self::GridTooLarge { needed: u64::MAX, budget } => write!(
+                f,
+                "the background grid would need more than 2^64 bytes, over the budget of {budget} bytes"
+            ),
             Self::GridTooLarge { needed, budget } => write!(
                 f,
                 "the background grid needs {needed} bytes, over the budget of {budget} bytes"

@@ -79,7 +79,9 @@ mod serde_array;
 mod vector;
 
 pub use crate::annulus::Candidates;
-pub use crate::bridson::{DEFAULT_ATTEMPTS, Iter, PoissonDisk, PoissonDisk2, PoissonDisk3};
+pub use crate::bridson::{
+    Builder, DEFAULT_ATTEMPTS, Iter, PoissonDisk, PoissonDisk2, PoissonDisk3,
+};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;

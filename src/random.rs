@@ -81,7 +81,10 @@ mod tests {
             let s = symmetric(&mut rng);
             assert!((-1.0..1.0).contains(&s), "symmetric draw {s}");
             let (a, b) = symmetric_pair(&mut rng);
-            assert!((-1.0..1.0).contains(&a) && (-1.0..1.0).contains(&b), "pair {a} {b}");
+            assert!(
+                (-1.0..1.0).contains(&a) && (-1.0..1.0).contains(&b),
+                "pair {a} {b}"
+            );
             let i = below(&mut rng, 7);
             assert!(i < 7, "index {i}");
         }

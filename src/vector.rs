@@ -69,7 +69,10 @@ mod tests {
         let b = [0.95, 0.5];
         let d2 = periodic_distance_squared(&a, &b, &period);
         assert!((d2 - 0.01).abs() < 1e-15, "wrapped distance², got {d2}");
-        assert!((distance_squared(&a, &b) - 0.81).abs() < 1e-15, "plain distance²");
+        assert!(
+            (distance_squared(&a, &b) - 0.81).abs() < 1e-15,
+            "plain distance²"
+        );
     }
 
     #[test]

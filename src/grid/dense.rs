@@ -192,12 +192,12 @@ fn stencil<const N: usize>(
     loop {
         let mut gap2 = 0.0;
         let mut centre2 = 0.0;
-        for i in 0..N {
+        for (&di, &side) in d.iter().zip(&plan.side) {
             #[expect(clippy::cast_precision_loss, reason = "small offsets")]
-            let a = d[i].unsigned_abs() as f64;
-            let gap = (a - 1.0 - plan.eta).max(0.0) * plan.side[i];
+            let a = di.unsigned_abs() as f64;
+            let gap = (a - 1.0 - plan.eta).max(0.0) * side;
             gap2 += gap * gap;
-            centre2 += (a * plan.side[i]) * (a * plan.side[i]);
+            centre2 += (a * side) * (a * side);
         }
         if gap2 < r2 {
             let linear: isize = (0..N).map(|i| d[i] * stride[i]).sum();

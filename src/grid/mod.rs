@@ -169,7 +169,11 @@ fn sparse_bytes_per_point(n: usize) -> f64 {
 
 /// Volume of the unit ball in `n` dimensions.
 pub(crate) fn unit_ball_volume(n: usize) -> f64 {
-    let (mut v, start) = if n % 2 == 0 { (1.0, 2) } else { (2.0, 3) };
+    let (mut v, start) = if n.is_multiple_of(2) {
+        (1.0, 2)
+    } else {
+        (2.0, 3)
+    };
     let mut k = start;
     while k <= n {
         #[expect(clippy::cast_precision_loss, reason = "N is small")]
@@ -297,7 +301,9 @@ pub(crate) fn plan<const N: usize>(
             }
             match sparse() {
                 Ok(s) if s.bytes <= budget => Ok(GridPlan::Sparse(s)),
-                Ok(s) => Err(too_large(s.bytes.min(dense.map_or_else(|b| b, |d| d.bytes)))),
+                Ok(s) => Err(too_large(
+                    s.bytes.min(dense.map_or_else(|b| b, |d| d.bytes)),
+                )),
                 Err(needed) => Err(too_large(needed.min(dense.map_or_else(|b| b, |d| d.bytes)))),
             }
         }
@@ -346,7 +352,12 @@ mod tests {
 
     #[test]
     fn unit_ball_volumes() {
-        let expected = [1.0, 2.0, core::f64::consts::PI, 4.0 / 3.0 * core::f64::consts::PI];
+        let expected = [
+            1.0,
+            2.0,
+            core::f64::consts::PI,
+            4.0 / 3.0 * core::f64::consts::PI,
+        ];
         for (n, v) in expected.iter().enumerate() {
             assert!((unit_ball_volume(n) - v).abs() < 1e-12, "V_{n}");
         }
@@ -374,7 +385,13 @@ mod tests {
         let d = Domain::from_extent([1e300, 1e300]).unwrap();
         let e = plan(&d, 1e-100, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
         assert!(matches!(e, Err(Error::GridTooLarge { .. })), "{e:?}");
-        let e = plan(&Domain::from_extent([1.0; 3]).unwrap(), 1e-6, GridLayout::Dense, 1 << 30, None);
+        let e = plan(
+            &Domain::from_extent([1.0; 3]).unwrap(),
+            1e-6,
+            GridLayout::Dense,
+            1 << 30,
+            None,
+        );
         assert!(matches!(e, Err(Error::GridTooLarge { .. })), "{e:?}");
     }
 
@@ -383,7 +400,13 @@ mod tests {
         let d = Domain::from_extent([1e6, 1e6]).unwrap();
         let none = plan(&d, 1e-3, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
         assert!(none.is_err(), "uncapped must not fit: {none:?}");
-        let capped = plan(&d, 1e-3, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, Some(1000));
+        let capped = plan(
+            &d,
+            1e-3,
+            GridLayout::Auto,
+            DEFAULT_MAX_GRID_BYTES,
+            Some(1000),
+        );
         assert!(matches!(capped, Ok(GridPlan::Sparse(_))), "{capped:?}");
     }
 }
