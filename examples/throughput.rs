@@ -1,0 +1,235 @@
+//! Prints the figures behind README's performance table: points/s, ρ and
+//! peak resident memory for the library and for a textbook Bridson, measured
+//! side by side in one run, with the speed ratio at equal `k`.
+//!
+//! ```text
+//! cargo run --release --example throughput            # all cases, 3 runs each
+//! cargo run --release --example throughput -- --runs 5 --only 2d
+//! ```
+//!
+//! Each case runs in a fresh child process, so its peak RSS (`VmHWM`, Linux
+//! only) is its own. The reported time is the median of the runs.
+
+#[path = "../benches/textbook/mod.rs"]
+mod textbook;
+
+use bridson::{Candidates, Domain, GridLayout, PoissonDisk, relative_radius, seeded_rng};
+use std::process::{Command, ExitCode};
+use std::time::Instant;
+
+struct Case {
+    name: &'static str,
+    dim: usize,
+    radius: f64,
+    what: What,
+}
+
+#[derive(Clone, Copy)]
+enum What {
+    Textbook,
+    Library(Candidates, GridLayout),
+}
+
+const CASES: &[Case] = &[
+    Case {
+        name: "2d-textbook",
+        dim: 2,
+        radius: 0.000785,
+        what: What::Textbook,
+    },
+    Case {
+        name: "2d-annulus",
+        dim: 2,
+        radius: 0.000785,
+        what: What::Library(Candidates::Annulus, GridLayout::Auto),
+    },
+    Case {
+        name: "2d-sphere",
+        dim: 2,
+        radius: 0.000785,
+        what: What::Library(Candidates::Sphere, GridLayout::Auto),
+    },
+    Case {
+        name: "3d-textbook",
+        dim: 3,
+        radius: 0.00835,
+        what: What::Textbook,
+    },
+    Case {
+        name: "3d-annulus",
+        dim: 3,
+        radius: 0.00835,
+        what: What::Library(Candidates::Annulus, GridLayout::Auto),
+    },
+    Case {
+        name: "3d-sphere",
+        dim: 3,
+        radius: 0.00835,
+        what: What::Library(Candidates::Sphere, GridLayout::Auto),
+    },
+    Case {
+        name: "4d-annulus",
+        dim: 4,
+        radius: 0.0418,
+        what: What::Library(Candidates::Annulus, GridLayout::Auto),
+    },
+    Case {
+        name: "4d-annulus-dense",
+        dim: 4,
+        radius: 0.0418,
+        what: What::Library(Candidates::Annulus, GridLayout::Dense),
+    },
+    Case {
+        name: "4d-sphere",
+        dim: 4,
+        radius: 0.0418,
+        what: What::Library(Candidates::Sphere, GridLayout::Auto),
+    },
+];
+
+const K: u32 = 30;
+const SEED: u64 = 2026;
+
+/// Runs one case in this process: (points, seconds, ρ).
+fn run_case(case: &Case) -> Result<(usize, f64, f64), String> {
+    match case.dim {
+        2 => run::<2>(case),
+        3 => run::<3>(case),
+        4 => run::<4>(case),
+        d => Err(format!("no case for dim {d}")),
+    }
+}
+
+fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
+    let start = Instant::now();
+    let count = match case.what {
+        What::Textbook => {
+            let mut rng = seeded_rng(SEED);
+            match N {
+                2 => textbook::textbook_2d(1.0, 1.0, case.radius, K, &mut rng).len(),
+                3 => textbook::textbook_3d([1.0; 3], case.radius, K, &mut rng).len(),
+                _ => return Err("textbook baseline is 2-D and 3-D only".into()),
+            }
+        }
+        What::Library(candidates, layout) => {
+            let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;
+            let sampler = PoissonDisk::builder(domain, case.radius)
+                .attempts(K)
+                .layout(layout)
+                .candidates(candidates)
+                .build()
+                .map_err(|e| e.to_string())?;
+            sampler.iter_seeded(SEED).count()
+        }
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let rho = relative_radius::<N>(case.radius, count, 1.0).unwrap_or(f64::NAN);
+    Ok((count, seconds, rho))
+}
+
+/// Peak resident set size of this process in MiB, from `/proc/self/status`.
+fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn child(name: &str) -> ExitCode {
+    let Some(case) = CASES.iter().find(|c| c.name == name) else {
+        eprintln!("throughput: unknown case {name}");
+        return ExitCode::from(2);
+    };
+    match run_case(case) {
+        Ok((count, seconds, rho)) => {
+            let rss = peak_rss_mib().unwrap_or(f64::NAN);
+            println!("{count} {seconds} {rho} {rss}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("throughput: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [flag, name] = args.as_slice()
+        && flag == "--child"
+    {
+        return child(name);
+    }
+    let mut runs = 3usize;
+    let mut only = String::new();
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match (a.as_str(), it.next()) {
+            ("--runs", Some(v)) => runs = v.parse().unwrap_or(3).max(1),
+            ("--only", Some(v)) => only.clone_from(v),
+            _ => {
+                eprintln!("usage: throughput [--runs N] [--only PREFIX]");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let exe = match std::env::current_exe() {
+        Ok(e) => e,
+        Err(e) => {
+            eprintln!("throughput: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    println!("k = {K}, seed {SEED}, unit box, median of {runs} runs, one process per run");
+    println!(
+        "{:<18} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9}",
+        "case", "points", "seconds", "Mpoints/s", "rho", "peak MiB", "vs text"
+    );
+    let mut baseline: Option<(usize, f64)> = None;
+    for case in CASES.iter().filter(|c| c.name.starts_with(only.as_str())) {
+        let mut samples = Vec::new();
+        for _ in 0..runs {
+            let out = Command::new(&exe).args(["--child", case.name]).output();
+            let Ok(out) = out else {
+                eprintln!("throughput: could not start a child");
+                return ExitCode::from(1);
+            };
+            let text = String::from_utf8_lossy(&out.stdout);
+            let fields: Vec<f64> = text
+                .split_whitespace()
+                .filter_map(|f| f.parse().ok())
+                .collect();
+            if let [count, seconds, rho, rss] = fields[..] {
+                samples.push((count, seconds, rho, rss));
+            } else {
+                eprintln!(
+                    "throughput: {} failed: {}",
+                    case.name,
+                    String::from_utf8_lossy(&out.stderr)
+                );
+                return ExitCode::from(1);
+            }
+        }
+        samples.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (count, seconds, rho, rss) = samples[samples.len() / 2];
+        let rate = count / seconds;
+        if matches!(case.what, What::Textbook) {
+            baseline = Some((case.dim, rate));
+        }
+        let ratio = match baseline {
+            Some((dim, base)) if dim == case.dim => format!("{:.2}x", rate / base),
+            _ => "-".into(),
+        };
+        println!(
+            "{:<18} {:>9} {:>9.3} {:>10.3} {:>7.4} {:>10.1} {:>9}",
+            case.name,
+            count,
+            seconds,
+            rate / 1e6,
+            rho,
+            rss,
+            ratio
+        );
+    }
+    ExitCode::SUCCESS
+}
