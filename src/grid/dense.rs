@@ -1,26 +1,35 @@
-//! Bridson's dense background grid, with points stored inline.
+//! Bridson's dense background grid.
 //!
 //! Each cell has side `<= r/√N`, so it can hold at most one point of a valid
-//! set, and the cell stores that point's coordinates directly
-//! (`[f64::INFINITY; N]` when empty). A neighbour check is then a run over a
-//! precomputed list of linear cell offsets, nearest first, with no
-//! indirection and no branch on emptiness: an empty cell is infinitely far.
+//! set; the cell stores that point's `u32` index into the point vector, whose
+//! slot 0 is a sentinel at infinity that every empty cell points to. A
+//! neighbour check is then a run over a precomputed list of linear cell
+//! offsets, nearest first, with no branch on emptiness: an empty cell is
+//! infinitely far. (Storing the coordinates inline in the cells was as fast
+//! and took 3.5× the memory in 3-D, where 89 % of cells are empty: 222 MB
+//! against 63 MB peak for a million points.)
 //!
 //! The grid is padded by the search reach on every side, so offsets never
-//! leave the array. On a periodic axis the padding holds ghost copies of the
-//! points near the opposite face (with their original coordinates: the
-//! distance itself wraps), so the same branch-free scan serves toroidal
-//! domains.
+//! leave the array. On a periodic axis the padding holds ghost entries for
+//! the points near the opposite face (the same index, so the original
+//! coordinates: the distance itself wraps), so the same branch-free scan
+//! serves toroidal domains.
 
 use super::{DensePlan, NeighbourGrid};
 use crate::domain::Domain;
 use crate::vector::{distance_squared, periodic_distance_squared};
 
-const EMPTY: f64 = f64::INFINITY;
+/// Index 0 of `points` is this sentinel, infinitely far from everything:
+/// empty cells hold index 0, so a scan never branches on emptiness.
+const FAR: f64 = f64::INFINITY;
+const EMPTY: u32 = 0;
 
 #[derive(Debug)]
 pub(crate) struct Dense<const N: usize> {
-    cells: Vec<[f64; N]>,
+    /// Index into `points` of the point in each cell; [`EMPTY`] if none.
+    cells: Vec<u32>,
+    /// The points, in insertion order, after the sentinel at index 0.
+    points: Vec<[f64; N]>,
     lo: [f64; N],
     inv_side: [f64; N],
     /// Cells per axis inside the box.
@@ -47,10 +56,14 @@ impl<const N: usize> Dense<N> {
         }
         let mut cells = Vec::new();
         cells.try_reserve_exact(total).ok()?;
-        cells.resize(total, [EMPTY; N]);
+        cells.resize(total, EMPTY);
+        let mut points = Vec::new();
+        points.try_reserve(1024).ok()?;
+        points.push([FAR; N]);
         let offsets = stencil(plan, &stride, radius)?;
         Some(Self {
             cells,
+            points,
             lo: domain.lo(),
             inv_side: plan.side.map(|s| 1.0 / s),
             counts: plan.cells,
@@ -88,7 +101,10 @@ impl<const N: usize> Dense<N> {
     fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> bool {
         for &off in &self.offsets {
             // Always Some: the padding is as wide as the largest offset.
-            let Some(q) = self.cells.get(base.wrapping_add_signed(off)) else {
+            let Some(&index) = self.cells.get(base.wrapping_add_signed(off)) else {
+                continue;
+            };
+            let Some(q) = self.points.get(index as usize) else {
                 continue;
             };
             let d2 = if PERIODIC {
@@ -105,7 +121,7 @@ impl<const N: usize> Dense<N> {
 
     /// Writes `p` into every ghost cell that stands for its cell across a
     /// periodic face (several when the period is shorter than the padding).
-    fn write_images(&mut self, cell: &[usize; N], p: &[f64; N]) {
+    fn write_images(&mut self, cell: &[usize; N], index: u32) {
         let home: [usize; N] = core::array::from_fn(|i| cell[i] + self.pad[i]);
         // Per axis, the first image and the step; bounded axes have one.
         let first: [usize; N] = core::array::from_fn(|i| {
@@ -125,9 +141,9 @@ impl<const N: usize> Dense<N> {
         let mut at = first;
         loop {
             if at != home {
-                let index = self.index(&at);
-                if let Some(slot) = self.cells.get_mut(index) {
-                    *slot = *p;
+                let at_index = self.index(&at);
+                if let Some(slot) = self.cells.get_mut(at_index) {
+                    *slot = index;
                 }
             }
             // Odometer over the images of every axis.
@@ -163,14 +179,23 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
         let base = self.index(&core::array::from_fn(|i| cell[i] + self.pad[i]));
+        // More than u32::MAX - 1 points cannot be indexed: refuse the
+        // candidate (the set stays valid, the run ends there).
+        let Ok(index) = u32::try_from(self.points.len()) else {
+            return false;
+        };
+        if index == u32::MAX {
+            return false;
+        }
         match self.cells.get_mut(base) {
             // Occupied only if rounding put two valid points in one cell:
             // drop the newcomer, the set stays valid.
-            Some(slot) if slot[0] == EMPTY => *slot = p,
+            Some(slot) if *slot == EMPTY => *slot = index,
             _ => return false,
         }
+        self.points.push(p);
         if self.any_periodic {
-            self.write_images(&cell, &p);
+            self.write_images(&cell, index);
         }
         true
     }

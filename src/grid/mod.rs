@@ -3,7 +3,8 @@
 //!
 //! Two layouts implement [`NeighbourGrid`]:
 //! - [`dense::Dense`]: Bridson's grid of cells of side `<= r/√N`, each
-//!   holding at most one point, stored inline. Fast, memory ∝ box volume.
+//!   holding the `u32` index of at most one point. Fast, memory ∝ box
+//!   volume (4 bytes a cell) plus the points.
 //! - [`sparse::Sparse`]: a hash map from cells of side `≈ r` to the points
 //!   in them. Memory ∝ number of points, whatever the box.
 //!
@@ -143,8 +144,27 @@ fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePl
         let padded = counts[i].checked_add(2 * p).ok_or(u64::MAX)?;
         total = total.checked_mul(padded).ok_or(u64::MAX)?;
     }
-    let point_bytes = u64::try_from(size_of::<[f64; N]>()).map_err(|_| u64::MAX)?;
-    let bytes = total.checked_mul(point_bytes).ok_or(u64::MAX)?;
+    // Cells hold u32 indices; the points live in a growing vector, bounded
+    // by the packing bound (and by one per inner cell), doubled for the
+    // vector's growth slack.
+    let cell_bytes = total.checked_mul(4).ok_or(u64::MAX)?;
+    let inner: f64 = counts.iter().map(|&m| to_f64(m)).product();
+    let points = ln_max_points(domain, radius).exp().min(inner);
+    #[expect(clippy::cast_precision_loss, reason = "N is small")]
+    let point_bytes = 2.0 * (points.ceil() + 1.0) * (8 * N) as f64;
+    if !point_bytes.is_finite() || point_bytes >= 1.8e19 {
+        return Err(u64::MAX);
+    }
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "finite, positive and below u64::MAX"
+    )]
+    let bytes = cell_bytes.saturating_add(point_bytes as u64);
+    // u32 indices, with 0 reserved for the empty sentinel.
+    if points >= f64::from(u32::MAX) {
+        return Err(bytes);
+    }
     let cells = counts.map(|m| usize::try_from(m).unwrap_or(usize::MAX));
     if cells.contains(&usize::MAX) || usize::try_from(total).is_err() {
         return Err(bytes);
