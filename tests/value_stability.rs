@@ -1,0 +1,186 @@
+//! Value stability: the first points for fixed seeds are pinned, so any
+//! change to the stream a seed produces is caught and must be flagged as
+//! **value-breaking** in CHANGELOG.md. The values were produced by the
+//! implementation at the time of writing (shortest round-trip formatting)
+//! and are compared bit for bit.
+//!
+//! If a change is intended, regenerate them and say so in the changelog.
+
+use bridson::{Candidates, Domain, GridLayout, PoissonDisk};
+
+fn check<const N: usize>(sampler: &PoissonDisk<N>, seed: u64, expected: &[[f64; N]]) {
+    let got: Vec<[f64; N]> = sampler.iter_seeded(seed).take(expected.len()).collect();
+    assert_eq!(got.len(), expected.len(), "seed {seed}: stream too short");
+    for (i, (g, e)) in got.iter().zip(expected).enumerate() {
+        let same = g.iter().zip(e).all(|(a, b)| a.to_bits() == b.to_bits());
+        assert!(same, "seed {seed}, point {i}: got {g:?}, pinned {e:?}");
+    }
+}
+
+#[test]
+fn two_d_annulus() {
+    let sampler: PoissonDisk<2> =
+        PoissonDisk::new(Domain::from_extent([1.0, 1.0]).unwrap(), 0.05).unwrap();
+    check(
+        &sampler,
+        7,
+        &[
+            [0.05536043647833311, 0.17211585444811772],
+            [0.15071435696592123, 0.14691513499594824],
+            [0.1001110178616656, 0.11760731212678063],
+            [0.13273937217073867, 0.0730537609057129],
+        ],
+    );
+}
+
+#[test]
+fn two_d_sphere() {
+    let sampler: PoissonDisk<2> =
+        PoissonDisk::builder(Domain::from_extent([1.0, 1.0]).unwrap(), 0.05)
+            .candidates(Candidates::Sphere)
+            .build()
+            .unwrap();
+    check(
+        &sampler,
+        7,
+        &[
+            [0.05536043647833311, 0.17211585444811772],
+            [0.02613604501116184, 0.21268598438842667],
+            [0.005732595070232868, 0.16602669546082943],
+            [0.07448203975826821, 0.12591666843792051],
+        ],
+    );
+}
+
+#[test]
+fn two_d_periodic_shifted() {
+    let sampler: PoissonDisk<2> = PoissonDisk::new(
+        Domain::new([-3.0, 10.0], [-1.0, 10.5])
+            .unwrap()
+            .with_periodic([true, true]),
+        0.05,
+    )
+    .unwrap();
+    check(
+        &sampler,
+        11,
+        &[
+            [-1.2804341556431407, 10.403233575136666],
+            [-1.3635681619646256, 10.392609577416103],
+            [-1.3594872760854886, 10.44322724748206],
+            [-1.2571381088198763, 10.449187811171754],
+        ],
+    );
+}
+
+#[test]
+fn three_d_annulus() {
+    let sampler: PoissonDisk<3> =
+        PoissonDisk::new(Domain::from_extent([1.0; 3]).unwrap(), 0.1).unwrap();
+    check(
+        &sampler,
+        1,
+        &[
+            [0.8116121588818848, 0.7471047161582187, 0.10015090353378375],
+            [0.8405848521351933, 0.9118889768111781, 0.05798310425943165],
+            [0.6685144409150003, 0.8478863306778744, 0.005741766058048589],
+            [0.505935275236529, 0.7481699697177187, 0.06554877841605697],
+        ],
+    );
+}
+
+#[test]
+fn one_d_annulus() {
+    let sampler: PoissonDisk<1> =
+        PoissonDisk::new(Domain::from_extent([10.0]).unwrap(), 0.5).unwrap();
+    check(
+        &sampler,
+        3,
+        &[
+            [0.5145141894999983],
+            [1.2485423213918445],
+            [1.772244777428107],
+            [2.444616205273638],
+        ],
+    );
+}
+
+#[test]
+fn five_d_annulus_sparse() {
+    let sampler: PoissonDisk<5> = PoissonDisk::builder(Domain::from_extent([1.0; 5]).unwrap(), 0.3)
+        .layout(GridLayout::Sparse)
+        .build()
+        .unwrap();
+    check(
+        &sampler,
+        5,
+        &[
+            [
+                0.29202287154046747,
+                0.6114394140810253,
+                0.09796325663560501,
+                0.058611202242922045,
+                0.5270564268595844,
+            ],
+            [
+                0.2771096796147332,
+                0.4365419502750518,
+                0.25222869400390857,
+                0.16343297940040752,
+                0.04578176770009268,
+            ],
+            [
+                0.06585699323339317,
+                0.8717910959765793,
+                0.03640959902191035,
+                0.19429962532887982,
+                0.29394567609989697,
+            ],
+            [
+                0.4432731704205081,
+                0.09803849117909696,
+                0.33314746652254335,
+                0.215458404089462,
+                0.2786397370909919,
+            ],
+        ],
+    );
+}
+
+#[test]
+fn four_d_sphere() {
+    let sampler: PoissonDisk<4> = PoissonDisk::builder(Domain::from_extent([1.0; 4]).unwrap(), 0.3)
+        .candidates(Candidates::Sphere)
+        .build()
+        .unwrap();
+    check(
+        &sampler,
+        9,
+        &[
+            [
+                0.5990316791291411,
+                0.4297364011687632,
+                0.19864982391454744,
+                0.8838122874587226,
+            ],
+            [
+                0.7961116609832299,
+                0.4261194920225981,
+                0.4224258945021696,
+                0.9165336406242763,
+            ],
+            [
+                0.8805139268694185,
+                0.44111527349594626,
+                0.10350046106797452,
+                0.8440017081922153,
+            ],
+            [
+                0.9102898017301793,
+                0.39483971460838996,
+                0.35651405244568085,
+                0.6488760706263238,
+            ],
+        ],
+    );
+}
