@@ -22,7 +22,7 @@ pub enum Candidates {
     /// On the sphere of radius `r·(1 + 1e-7)` around the active point
     /// (Roberts 2019): in 2-D the `k` attempts are evenly spaced in angle
     /// from a random start, in other dimensions the directions are uniform
-    /// on the sphere. Packs denser (2-D ρ ≈ 0.8 with `k = 30`) and wastes
+    /// on the sphere. Packs denser (2-D ρ ≈ 0.87 with `k = 30`) and wastes
     /// fewer attempts, at some cost in the isotropy of the spectrum.
     Sphere,
 }

@@ -33,6 +33,14 @@ pub enum Error {
     },
     /// Occurs when the number of attempts `k` is zero.
     ZeroAttempts,
+    /// Occurs when the box spans more than 2⁴⁰ radii on some axis. Cell
+    /// indices that large lose the precision the exact search relies on, so
+    /// neither a point cap nor a larger budget helps: grow the radius or
+    /// shrink the box.
+    BoxTooWide {
+        /// The first axis that is too wide.
+        axis: usize,
+    },
     /// Occurs when the background grid would need more memory than the
     /// budget allows, on the dense layout and on the sparse one (whose size is
     /// bounded by the most points that fit in the box, or by the point cap).
@@ -63,6 +71,10 @@ impl fmt::Display for Error {
                 write!(f, "the box extent hi - lo on axis {axis} overflows f64")
             }
             Self::ZeroAttempts => f.write_str("the number of attempts k must be at least 1"),
+            Self::BoxTooWide { axis } => write!(
+                f,
+                "the box spans more than 2^40 radii on axis {axis}: grow the radius or shrink the box"
+            ),
             Self::GridTooLarge { needed: u64::MAX, budget } => write!(
                 f,
                 "the background grid would need more than 2^64 bytes, over the budget of {budget} bytes"

@@ -56,6 +56,9 @@
 //! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`],
 //!   [`Candidates`] and [`GridLayout`]. Deserialising validates again, so a
 //!   bad file is an [`Error`], not a bad sampler. It never changes output.
+//!   To reproduce a saved configuration exactly, use a format that
+//!   round-trips every `f64` (for `serde_json`, its `float_roundtrip`
+//!   feature).
 //!
 //! # Performance
 //! In 2-D and 3-D the dense grid stores points inline in cells of side

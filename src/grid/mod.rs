@@ -298,6 +298,12 @@ pub(crate) fn plan<const N: usize>(
     budget: u64,
     max_points: Option<u64>,
 ) -> Result<GridPlan<N>, Error> {
+    for (axis, extent) in domain.extent().into_iter().enumerate() {
+        let cells = extent / radius;
+        if cells.is_nan() || cells > MAX_CELLS_PER_AXIS {
+            return Err(Error::BoxTooWide { axis });
+        }
+    }
     let dense = || plan_dense(domain, radius);
     let sparse = || plan_sparse(domain, radius, max_points);
     let too_large = |needed: u64| Error::GridTooLarge { needed, budget };
@@ -404,7 +410,14 @@ mod tests {
     fn huge_grids_are_errors_not_aborts() {
         let d = Domain::from_extent([1e300, 1e300]).unwrap();
         let e = plan(&d, 1e-100, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
-        assert!(matches!(e, Err(Error::GridTooLarge { .. })), "{e:?}");
+        assert_eq!(
+            e,
+            Err(Error::BoxTooWide { axis: 0 }),
+            "too wide for any grid"
+        );
+        let d = Domain::from_extent([1.0, 1e6]).unwrap();
+        let e = plan(&d, 1e-7, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, Some(10));
+        assert_eq!(e, Err(Error::BoxTooWide { axis: 1 }), "a cap cannot help");
         let e = plan(
             &Domain::from_extent([1.0; 3]).unwrap(),
             1e-6,

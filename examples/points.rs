@@ -1,0 +1,808 @@
+//! Poisson disk points on the command line: samples the box
+//! `lo <= x < lo + extent` in 1 to 8 dimensions with `bridson::PoissonDisk`
+//! and streams the points, as they are generated, as CSV or JSON to a file or
+//! stdout, then prints a one-line summary (count, time, points/s, relative
+//! radius ρ, grid layout) to stderr. Run it as
+//! `cargo run --release --example points -- --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv`;
+//! `--help` lists every flag. Exit status: 0 on success, 1 if writing the
+//! output fails (for example a broken pipe), 2 for bad arguments or
+//! parameters the sampler rejects.
+
+use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk};
+use std::ffi::OsString;
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::PathBuf;
+use std::str::FromStr;
+use std::time::{Duration, Instant};
+
+const USAGE: &str = "\
+Usage: points --dim D --radius R [OPTIONS]
+
+Poisson disk sampling (Bridson) of the box lo <= x < lo + extent: no two
+points closer than R. Points go to stdout (or --out) as they are generated;
+a one-line summary goes to stderr.
+
+Required:
+  --dim D                  dimension, 1 to 8
+  --radius R               minimum distance between points
+Options:
+  --extent A,B,..          box size, exactly D values      [default: all 1]
+  --lo A,B,..              lower corner, exactly D values  [default: all 0]
+  --periodic               make every axis periodic (toroidal)
+  --periodic-axes I,J,..   make the listed axes (0-based) periodic
+  --attempts K             candidate attempts per active point  [default: 30]
+  --candidates KIND        annulus | sphere                [default: annulus]
+  --seed S                 seed, an unsigned 64-bit integer     [default: 0]
+  --max-points N           stop after N points
+  --format FMT             csv | json | none                    [default: csv]
+                             csv:  header x0,x1,.. then one point a line
+                             json: {\"dim\":..,\"radius\":..,\"lo\":[..],\"hi\":[..],\"points\":[[..],..]}
+                             none: write nothing (--out is ignored); the
+                                   summary time is then pure generation
+  --out FILE               write to FILE instead of stdout
+  -h, --help               print this help and exit
+
+Flags also accept the form --flag=value. Numbers are printed in the shortest
+form that parses back to the identical f64.
+
+Exit status: 0 success, 1 error writing the output, 2 bad arguments or
+parameters rejected by the sampler.
+
+Example:
+  points --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv
+";
+
+/// What to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Csv,
+    Json,
+    None,
+}
+
+/// A fully parsed command line. List lengths and axis numbers are already
+/// checked against `dim`; everything else is left to the library.
+#[derive(Clone, Debug, PartialEq)]
+struct Config {
+    dim: usize,
+    radius: f64,
+    extent: Option<Vec<f64>>,
+    lo: Option<Vec<f64>>,
+    /// One flag per axis (`dim` of them).
+    periodic: Vec<bool>,
+    attempts: u32,
+    candidates: Candidates,
+    seed: u64,
+    max_points: Option<u64>,
+    format: Format,
+    out: Option<PathBuf>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Command {
+    Help,
+    Run(Config),
+}
+
+/// Why a run failed; decides the exit code.
+#[derive(Debug)]
+enum Failure {
+    /// Bad arguments or parameters (exit 2).
+    Usage(String),
+    /// Writing the output failed (exit 1).
+    Io(String),
+}
+
+fn main() {
+    let code = match parse_args(std::env::args_os().skip(1)) {
+        Ok(Command::Help) => print_help(),
+        Ok(Command::Run(config)) => match dispatch(&config) {
+            Ok(()) => 0,
+            Err(Failure::Usage(message)) => usage_error(&message),
+            Err(Failure::Io(message)) => {
+                report(&format!("points: error: {message}"));
+                1
+            }
+        },
+        Err(message) => usage_error(&message),
+    };
+    std::process::exit(code);
+}
+
+fn print_help() -> i32 {
+    let mut out = io::stdout().lock();
+    match out.write_all(USAGE.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => 0,
+        Err(e) => {
+            report(&format!("points: error: writing the help to stdout: {e}"));
+            1
+        }
+    }
+}
+
+/// Prints a bad-argument message and the hint; returns exit code 2.
+fn usage_error(message: &str) -> i32 {
+    report(&format!(
+        "points: error: {message}\npoints: run with --help for usage"
+    ));
+    2
+}
+
+/// Writes a line to stderr. Unlike `eprintln!`, never panics if stderr is
+/// gone: there is nowhere left to report that.
+fn report(line: &str) {
+    let mut err = io::stderr().lock();
+    let _ = writeln!(err, "{line}");
+}
+
+// ---------------------------------------------------------------------------
+// Argument parsing
+
+/// Parses the arguments after the program name.
+fn parse_args<I, S>(args: I) -> Result<Command, String>
+where
+    I: IntoIterator<Item = S>,
+    S: Into<OsString>,
+{
+    let mut dim: Option<usize> = None;
+    let mut radius: Option<f64> = None;
+    let mut extent: Option<Vec<f64>> = None;
+    let mut lo: Option<Vec<f64>> = None;
+    let mut periodic_all = false;
+    let mut periodic_axes: Option<Vec<usize>> = None;
+    let mut attempts: Option<u32> = None;
+    let mut candidates: Option<Candidates> = None;
+    let mut seed: Option<u64> = None;
+    let mut max_points: Option<u64> = None;
+    let mut format: Option<Format> = None;
+    let mut out: Option<PathBuf> = None;
+
+    let mut args = args.into_iter().map(Into::into);
+    while let Some(raw) = args.next() {
+        let Some(arg) = raw.to_str() else {
+            return Err(format!(
+                "argument '{}' is not valid UTF-8",
+                raw.to_string_lossy()
+            ));
+        };
+        // `--flag=value` is the same as `--flag value`.
+        let (flag, inline) = match arg.split_once('=') {
+            Some((flag, value)) if flag.starts_with("--") => (flag, Some(value)),
+            _ => (arg, None),
+        };
+        let flag = flag.to_owned();
+        let inline: Option<OsString> = inline.map(OsString::from);
+        match flag.as_str() {
+            "-h" | "--help" => {
+                no_value(&flag, inline.as_ref())?;
+                return Ok(Command::Help);
+            }
+            "--periodic" => {
+                no_value(&flag, inline.as_ref())?;
+                periodic_all = true;
+            }
+            "--dim" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(
+                    &mut dim,
+                    parse_number(&flag, &v, "an integer from 1 to 8")?,
+                    &flag,
+                )?;
+            }
+            "--radius" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(&mut radius, parse_number(&flag, &v, "a number")?, &flag)?;
+            }
+            "--extent" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(&mut extent, parse_list(&flag, &v, "a number")?, &flag)?;
+            }
+            "--lo" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(&mut lo, parse_list(&flag, &v, "a number")?, &flag)?;
+            }
+            "--periodic-axes" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let axes = parse_list(&flag, &v, "an axis number (0-based)")?;
+                set(&mut periodic_axes, axes, &flag)?;
+            }
+            "--attempts" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let k = parse_number(&flag, &v, "a positive integer below 2^32")?;
+                set(&mut attempts, k, &flag)?;
+            }
+            "--candidates" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let kind = match v.as_str() {
+                    "annulus" => Candidates::Annulus,
+                    "sphere" => Candidates::Sphere,
+                    _ => {
+                        return Err(format!(
+                            "invalid value '{v}' for --candidates: expected annulus or sphere"
+                        ));
+                    }
+                };
+                set(&mut candidates, kind, &flag)?;
+            }
+            "--seed" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let s = parse_number(&flag, &v, "an unsigned 64-bit integer")?;
+                set(&mut seed, s, &flag)?;
+            }
+            "--max-points" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let cap = parse_number(&flag, &v, "an unsigned 64-bit integer")?;
+                set(&mut max_points, cap, &flag)?;
+            }
+            "--format" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let f = match v.as_str() {
+                    "csv" => Format::Csv,
+                    "json" => Format::Json,
+                    "none" => Format::None,
+                    _ => {
+                        return Err(format!(
+                            "invalid value '{v}' for --format: expected csv, json or none"
+                        ));
+                    }
+                };
+                set(&mut format, f, &flag)?;
+            }
+            "--out" => {
+                // A path need not be UTF-8.
+                let v = value(&flag, inline, &mut args)?;
+                if v.is_empty() {
+                    return Err("--out needs a file name".to_owned());
+                }
+                set(&mut out, PathBuf::from(v), &flag)?;
+            }
+            other if other.starts_with('-') => return Err(format!("unknown flag '{other}'")),
+            other => return Err(format!("unexpected argument '{other}'")),
+        }
+    }
+
+    let dim = dim.ok_or("missing --dim")?;
+    if !(1..=8).contains(&dim) {
+        return Err(format!("--dim must be from 1 to 8, got {dim}"));
+    }
+    let radius = radius.ok_or("missing --radius")?;
+    for (flag, list) in [("--extent", &extent), ("--lo", &lo)] {
+        if let Some(values) = list
+            && values.len() != dim
+        {
+            return Err(format!(
+                "{flag} needs exactly {dim} comma-separated values (one per axis), got {}",
+                values.len()
+            ));
+        }
+    }
+    let mut periodic = vec![periodic_all; dim];
+    for &axis in periodic_axes.iter().flatten() {
+        match periodic.get_mut(axis) {
+            Some(p) => *p = true,
+            None => {
+                return Err(format!(
+                    "--periodic-axes: axis {axis} does not exist with --dim {dim} (axes are 0 to {})",
+                    dim - 1
+                ));
+            }
+        }
+    }
+    Ok(Command::Run(Config {
+        dim,
+        radius,
+        extent,
+        lo,
+        periodic,
+        attempts: attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS),
+        candidates: candidates.unwrap_or_default(),
+        seed: seed.unwrap_or(0),
+        max_points,
+        format: format.unwrap_or(Format::Csv),
+        out,
+    }))
+}
+
+/// Rejects `--flag=value` on a flag that takes no value.
+fn no_value(flag: &str, inline: Option<&OsString>) -> Result<(), String> {
+    match inline {
+        Some(_) => Err(format!("{flag} takes no value")),
+        None => Ok(()),
+    }
+}
+
+/// The flag's value: the `=value` part, else the next argument.
+fn value(
+    flag: &str,
+    inline: Option<OsString>,
+    rest: &mut impl Iterator<Item = OsString>,
+) -> Result<OsString, String> {
+    inline
+        .or_else(|| rest.next())
+        .ok_or_else(|| format!("missing value for {flag}"))
+}
+
+/// The flag's value as text.
+fn text_value(
+    flag: &str,
+    inline: Option<OsString>,
+    rest: &mut impl Iterator<Item = OsString>,
+) -> Result<String, String> {
+    value(flag, inline, rest)?.into_string().map_err(|raw| {
+        format!(
+            "invalid value '{}' for {flag}: not valid UTF-8",
+            raw.to_string_lossy()
+        )
+    })
+}
+
+/// Stores a flag's value, refusing a second occurrence.
+fn set<T>(slot: &mut Option<T>, value: T, flag: &str) -> Result<(), String> {
+    if slot.is_some() {
+        return Err(format!("{flag} given more than once"));
+    }
+    *slot = Some(value);
+    Ok(())
+}
+
+fn parse_number<T: FromStr>(flag: &str, text: &str, expected: &str) -> Result<T, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("invalid value '{text}' for {flag}: expected {expected}"))
+}
+
+/// A comma-separated list; every item must parse (no empty items).
+fn parse_list<T: FromStr>(flag: &str, text: &str, expected: &str) -> Result<Vec<T>, String> {
+    text.split(',')
+        .map(|item| {
+            item.trim().parse().map_err(|_| {
+                format!("invalid item '{item}' in {flag} '{text}': expected {expected}")
+            })
+        })
+        .collect()
+}
+
+// ---------------------------------------------------------------------------
+// Sampling and output
+
+fn dispatch(config: &Config) -> Result<(), Failure> {
+    match config.dim {
+        1 => run::<1>(config),
+        2 => run::<2>(config),
+        3 => run::<3>(config),
+        4 => run::<4>(config),
+        5 => run::<5>(config),
+        6 => run::<6>(config),
+        7 => run::<7>(config),
+        8 => run::<8>(config),
+        d => Err(Failure::Usage(format!(
+            "--dim must be from 1 to 8, got {d}"
+        ))),
+    }
+}
+
+/// Builds the sampler from `config`, streams its points out and prints the
+/// summary.
+fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
+    let sampler = build::<N>(config).map_err(Failure::Usage)?;
+    let (count, elapsed, layout) = match (config.format, &config.out) {
+        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, config.seed),
+        (format, Some(path)) => {
+            let file = File::create(path)
+                .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
+            write_points(BufWriter::new(file), format, &sampler, config.seed)
+        }
+        (format, None) => write_points(
+            BufWriter::new(io::stdout().lock()),
+            format,
+            &sampler,
+            config.seed,
+        ),
+    }
+    .map_err(|e| {
+        let target = config
+            .out
+            .as_ref()
+            .map_or_else(|| "stdout".to_owned(), |p| format!("'{}'", p.display()));
+        Failure::Io(format!("writing to {target}: {e}"))
+    })?;
+    report(&summary(&sampler, count, elapsed, layout));
+    Ok(())
+}
+
+/// The sampler `config` describes, or the library's reason why not.
+fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
+    let extent = match &config.extent {
+        Some(v) => array::<N, f64>(v, "--extent")?,
+        None => [1.0; N],
+    };
+    let lo = match &config.lo {
+        Some(v) => array::<N, f64>(v, "--lo")?,
+        None => [0.0; N],
+    };
+    let hi: [f64; N] = core::array::from_fn(|i| lo[i] + extent[i]);
+    let periodic = array::<N, bool>(&config.periodic, "--periodic")?;
+    let domain = Domain::new(lo, hi)
+        .map_err(|e| {
+            // The library sees only lo and hi; name what the user typed when
+            // `lo + extent` itself went wrong.
+            let axis = match e {
+                Error::EmptyBox { axis } | Error::NonFiniteBound { axis } => axis,
+                _ => return e.to_string(),
+            };
+            match (lo.get(axis), extent.get(axis), hi.get(axis)) {
+                (Some(&l), Some(&x), Some(&h))
+                    if l.is_finite() && x.is_finite() && x > 0.0 && !(l < h && h.is_finite()) =>
+                {
+                    format!(
+                        "on axis {axis}, lo {l:e} + extent {x:e} gives {h:e}: the extent is lost \
+                         to rounding or overflows"
+                    )
+                }
+                _ => e.to_string(),
+            }
+        })?
+        .with_periodic(periodic);
+    PoissonDisk::<N>::builder(domain, config.radius)
+        .attempts(config.attempts)
+        .max_points(config.max_points)
+        .candidates(config.candidates)
+        .build()
+        .map_err(|e| e.to_string())
+}
+
+fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], String> {
+    <[T; N]>::try_from(values)
+        .map_err(|_| format!("{flag} needs exactly {N} values, got {}", values.len()))
+}
+
+/// Streams the points of `seed` to `out` in `format`, flushing at the end.
+/// Returns the count and the time from building the grid to the flush.
+fn write_points<const N: usize, W: Write>(
+    mut out: W,
+    format: Format,
+    sampler: &PoissonDisk<N>,
+    seed: u64,
+) -> io::Result<(u64, Duration, GridLayout)> {
+    let start = Instant::now();
+    let points = sampler.iter_seeded(seed);
+    let layout = points.layout();
+    let mut count: u64 = 0;
+    match format {
+        Format::None => {
+            for _ in points {
+                count += 1;
+            }
+        }
+        Format::Csv => {
+            for i in 0..N {
+                if i > 0 {
+                    out.write_all(b",")?;
+                }
+                write!(out, "x{i}")?;
+            }
+            out.write_all(b"\n")?;
+            for p in points {
+                write_values(&mut out, &p)?;
+                out.write_all(b"\n")?;
+                count += 1;
+            }
+        }
+        Format::Json => {
+            let domain = sampler.domain();
+            write!(
+                out,
+                "{{\"dim\":{N},\"radius\":{},\"lo\":[",
+                sampler.radius()
+            )?;
+            write_values(&mut out, &domain.lo())?;
+            out.write_all(b"],\"hi\":[")?;
+            write_values(&mut out, &domain.hi())?;
+            out.write_all(b"],\"points\":[")?;
+            for p in points {
+                out.write_all(if count == 0 { b"[" } else { b",[" })?;
+                write_values(&mut out, &p)?;
+                out.write_all(b"]")?;
+                count += 1;
+            }
+            out.write_all(b"]}\n")?;
+        }
+    }
+    out.flush()?;
+    Ok((count, start.elapsed(), layout))
+}
+
+/// Comma-separated values with `{}` (shortest round-trip form, never an
+/// exponent; every value here is finite, so also valid JSON).
+fn write_values<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
+    for (i, x) in values.iter().enumerate() {
+        if i > 0 {
+            out.write_all(b",")?;
+        }
+        write!(out, "{x}")?;
+    }
+    Ok(())
+}
+
+/// `points: 1234567 in 0.812 s (1.52 M/s), rho 0.7312, grid Dense`.
+fn summary<const N: usize>(
+    sampler: &PoissonDisk<N>,
+    count: u64,
+    elapsed: Duration,
+    layout: GridLayout,
+) -> String {
+    let seconds = elapsed.as_secs_f64();
+    #[expect(clippy::cast_precision_loss, reason = "a rate, for display only")]
+    let per_second = count as f64 / seconds;
+    let rate = if seconds > 0.0 && per_second.is_finite() {
+        if per_second >= 1e6 {
+            format!("{:.2} M/s", per_second / 1e6)
+        } else if per_second >= 1e3 {
+            format!("{:.2} k/s", per_second / 1e3)
+        } else {
+            format!("{per_second:.0} /s")
+        }
+    } else {
+        "n/a".to_owned()
+    };
+    let rho = usize::try_from(count)
+        .ok()
+        .and_then(|n| bridson::relative_radius::<N>(sampler.radius(), n, sampler.domain().volume()))
+        .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
+    format!("points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(line: &str) -> Result<Command, String> {
+        parse_args(line.split_whitespace())
+    }
+
+    fn config(line: &str) -> Config {
+        match parse(line) {
+            Ok(Command::Run(c)) => c,
+            other => panic!("{line}: expected a run, got {other:?}"),
+        }
+    }
+
+    fn error(line: &str) -> String {
+        match parse(line) {
+            Err(e) => e,
+            other => panic!("{line}: expected an error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn parses_the_documented_example() {
+        let c = config("--dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv");
+        let expected = Config {
+            dim: 2,
+            radius: 0.01,
+            extent: Some(vec![1.0, 1.0]),
+            lo: None,
+            periodic: vec![false, false],
+            attempts: 30,
+            candidates: Candidates::Annulus,
+            seed: 7,
+            max_points: None,
+            format: Format::Csv,
+            out: Some(PathBuf::from("pts.csv")),
+        };
+        assert_eq!(c, expected, "example command");
+    }
+
+    #[test]
+    fn parses_every_flag_in_both_forms() {
+        let c = config(
+            "--dim=3 --radius=0.5 --extent 2,3,4 --lo=-1,-2,-3 --periodic-axes 0,2 \
+             --attempts 12 --candidates=sphere --seed 18446744073709551615 \
+             --max-points 100 --format json --out=x.json",
+        );
+        assert_eq!(c.dim, 3, "dim");
+        assert_eq!(c.radius, 0.5, "radius");
+        assert_eq!(c.extent, Some(vec![2.0, 3.0, 4.0]), "extent");
+        assert_eq!(c.lo, Some(vec![-1.0, -2.0, -3.0]), "lo");
+        assert_eq!(c.periodic, vec![true, false, true], "periodic axes");
+        assert_eq!(c.attempts, 12, "attempts");
+        assert_eq!(c.candidates, Candidates::Sphere, "candidates");
+        assert_eq!(c.seed, u64::MAX, "seed");
+        assert_eq!(c.max_points, Some(100), "cap");
+        assert_eq!(c.format, Format::Json, "format");
+        assert_eq!(c.out, Some(PathBuf::from("x.json")), "out");
+        let all = config("--periodic --dim 4 --radius 1");
+        assert_eq!(
+            all.periodic,
+            vec![true; 4],
+            "--periodic makes every axis periodic"
+        );
+        assert_eq!(
+            config("--dim 1 --radius 1 --format none").format,
+            Format::None,
+            "none"
+        );
+    }
+
+    #[test]
+    fn help_stops_parsing() {
+        assert_eq!(parse("--help"), Ok(Command::Help), "--help");
+        assert_eq!(parse("--dim 2 -h"), Ok(Command::Help), "-h");
+        assert_eq!(
+            parse("--dim 99 --help"),
+            Ok(Command::Help),
+            "before validation"
+        );
+    }
+
+    #[test]
+    fn rejects_bad_command_lines() {
+        let cases = [
+            ("--radius 0.1", "missing --dim"),
+            ("--dim 2", "missing --radius"),
+            ("--dim 0 --radius 1", "--dim must be from 1 to 8, got 0"),
+            ("--dim 9 --radius 1", "--dim must be from 1 to 8, got 9"),
+            ("--dim -1 --radius 1", "invalid value '-1' for --dim"),
+            ("--dim 2 --radius", "missing value for --radius"),
+            ("--dim 2 --radius abc", "invalid value 'abc' for --radius"),
+            (
+                "--dim 2 --radius 1 --extent 1,2,3",
+                "--extent needs exactly 2",
+            ),
+            ("--dim 2 --radius 1 --lo 1", "--lo needs exactly 2"),
+            (
+                "--dim 2 --radius 1 --extent 1,",
+                "invalid item '' in --extent",
+            ),
+            (
+                "--dim 2 --radius 1 --extent 1,x",
+                "invalid item 'x' in --extent",
+            ),
+            (
+                "--dim 2 --radius 1 --format xml",
+                "expected csv, json or none",
+            ),
+            (
+                "--dim 2 --radius 1 --candidates disk",
+                "expected annulus or sphere",
+            ),
+            (
+                "--dim 2 --radius 1 --attempts -3",
+                "invalid value '-3' for --attempts",
+            ),
+            ("--dim 2 --radius 1 --attempts 4294967296", "for --attempts"),
+            (
+                "--dim 2 --radius 1 --seed 1.5",
+                "invalid value '1.5' for --seed",
+            ),
+            ("--dim 2 --radius 1 --max-points -1", "for --max-points"),
+            (
+                "--dim 2 --radius 1 --periodic-axes 2",
+                "axis 2 does not exist",
+            ),
+            (
+                "--dim 2 --radius 1 --periodic=yes",
+                "--periodic takes no value",
+            ),
+            (
+                "--dim 2 --radius 1 --radius 2",
+                "--radius given more than once",
+            ),
+            ("--dim 2 --radius 1 --bogus", "unknown flag '--bogus'"),
+            ("--dim 2 --radius 1 stray", "unexpected argument 'stray'"),
+            ("--dim 2 --radius 1 --out=", "--out needs a file name"),
+        ];
+        for (line, expected) in cases {
+            let e = error(line);
+            assert!(
+                e.contains(expected),
+                "{line}: got '{e}', expected '{expected}'"
+            );
+        }
+    }
+
+    #[test]
+    fn library_errors_are_usage_errors() {
+        for line in [
+            "--dim 2 --radius 0",
+            "--dim 2 --radius nan",
+            "--dim 2 --radius 1 --extent 1,0",
+            "--dim 2 --radius 1 --extent 1,inf",
+            "--dim 2 --radius 1 --attempts 0",
+            "--dim 3 --radius 1e-9",
+        ] {
+            let c = config(line);
+            assert!(
+                matches!(dispatch(&c), Err(Failure::Usage(_))),
+                "{line}: expected a library error"
+            );
+        }
+    }
+
+    #[test]
+    fn a_lost_extent_is_explained() {
+        let e = build::<2>(&config("--dim 2 --radius 1 --lo 1e20,0")).unwrap_err();
+        assert!(e.contains("lo 1e20 + extent 1e0 gives 1e20"), "{e}");
+        let e = build::<1>(&config("--dim 1 --radius 1 --lo 1e308 --extent 1e308")).unwrap_err();
+        assert!(e.contains("gives inf"), "{e}");
+        let e = build::<1>(&config("--dim 1 --radius 1 --extent -1")).unwrap_err();
+        assert!(e.contains("lo must be < hi"), "plain library message: {e}");
+    }
+
+    #[test]
+    fn display_round_trips_bit_for_bit() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1.0 / 3.0,
+            2.0f64.sqrt(),
+            1e-150,
+            1e150,
+            1e300,
+            123_456_789.123_456_79,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            -f64::MAX,
+            f64::EPSILON,
+        ];
+        for x in values {
+            let text = format!("{x}");
+            assert!(
+                !text.contains(['e', 'E', 'N', 'i']),
+                "no exponent or special form: {text}"
+            );
+            let back: f64 = text.parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits(), "{x:?} printed as {text}");
+        }
+        assert_eq!(format!("{}", 1.0f64), "1", "integers print without a point");
+    }
+
+    fn output<const N: usize>(line: &str) -> String {
+        let c = config(line);
+        let sampler = build::<N>(&c).unwrap();
+        let mut bytes = Vec::new();
+        write_points(&mut bytes, c.format, &sampler, c.seed).unwrap();
+        String::from_utf8(bytes).unwrap()
+    }
+
+    #[test]
+    fn csv_has_a_header_and_the_seeded_points() {
+        let text = output::<2>("--dim 2 --radius 0.2 --lo -1,5 --seed 3");
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("x0,x1"), "header");
+        let c = config("--dim 2 --radius 0.2 --lo -1,5 --seed 3");
+        let expected = build::<2>(&c).unwrap().generate_seeded(3);
+        let got: Vec<[f64; 2]> = lines
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1]]
+            })
+            .collect();
+        assert!(!got.is_empty(), "some points");
+        assert_eq!(got, expected, "CSV round-trips to the generated points");
+    }
+
+    #[test]
+    fn json_has_the_documented_shape() {
+        let text = output::<2>("--dim 2 --radius 0.5 --extent 2,1 --lo 0,-1 --format json");
+        assert!(
+            text.starts_with(r#"{"dim":2,"radius":0.5,"lo":[0,-1],"hi":[2,0],"points":[["#),
+            "prefix: {text}"
+        );
+        assert!(text.ends_with("]]}\n"), "suffix: {text}");
+        let empty = output::<1>("--dim 1 --radius 0.5 --max-points 0 --format json");
+        assert_eq!(
+            empty, "{\"dim\":1,\"radius\":0.5,\"lo\":[0],\"hi\":[1],\"points\":[]}\n",
+            "no points"
+        );
+        assert_eq!(
+            output::<3>("--dim 3 --radius 0.5 --format none"),
+            "",
+            "none"
+        );
+    }
+}

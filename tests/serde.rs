@@ -1,0 +1,328 @@
+//! The `serde` feature: configurations round-trip through JSON, and
+//! deserialising validates again, so a bad file is an error, never a bad
+//! sampler.
+#![cfg(feature = "serde")]
+
+use bridson::{
+    Builder, Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout,
+    PoissonDisk, PoissonDisk2,
+};
+use serde_json::{Value, json};
+
+fn sampler_2d() -> PoissonDisk2 {
+    let domain = Domain::new([-1.5, 0.25], [2.0, 3.0])
+        .expect("valid box")
+        .with_periodic([true, false]);
+    PoissonDisk2::builder(domain, 0.125)
+        .attempts(12)
+        .layout(GridLayout::Sparse)
+        .max_grid_bytes(1 << 24)
+        .max_points(Some(500))
+        .candidates(Candidates::Sphere)
+        .build()
+        .expect("valid sampler")
+}
+
+/// Deserialises `value` as `T`, expecting failure; returns the message.
+fn error_of<T: serde::de::DeserializeOwned + core::fmt::Debug>(value: &Value) -> String {
+    let text = value.to_string();
+    match serde_json::from_str::<T>(&text) {
+        Ok(t) => panic!("{text} was accepted as {t:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_mentions(message: &str, words: &[&str]) {
+    for word in words {
+        assert!(
+            message.contains(word),
+            "error message {message:?} does not mention {word:?}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------- round trips
+
+#[test]
+fn poisson_disk_2d_round_trips() {
+    let sampler = sampler_2d();
+    let text = serde_json::to_string(&sampler).expect("serialises");
+    let back: PoissonDisk2 = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, sampler, "round trip through {text}");
+    assert_eq!(
+        back.generate_seeded(3),
+        sampler.generate_seeded(3),
+        "same configuration, same points"
+    );
+    // The text is the documented configuration, nothing internal.
+    let value: Value = serde_json::from_str(&text).expect("valid JSON");
+    assert_eq!(
+        value,
+        json!({
+            "domain": {"lo": [-1.5, 0.25], "hi": [2.0, 3.0], "periodic": [true, false]},
+            "radius": 0.125,
+            "attempts": 12,
+            "candidates": "Sphere",
+            "layout": "Sparse",
+            "max_grid_bytes": 1 << 24,
+            "max_points": 500,
+        }),
+        "serialised form"
+    );
+}
+
+#[test]
+fn poisson_disk_defaults_round_trip() {
+    let sampler = PoissonDisk::<3>::new(Domain::from_extent([1.0; 3]).expect("box"), 0.2)
+        .expect("valid sampler");
+    let text = serde_json::to_string_pretty(&sampler).expect("serialises");
+    let back: PoissonDisk<3> = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, sampler, "round trip through {text}");
+}
+
+#[test]
+fn builder_round_trips_and_matches_the_sampler_form() {
+    let sampler = sampler_2d();
+    let builder = sampler.to_builder();
+    let text = serde_json::to_string(&builder).expect("serialises");
+    assert_eq!(
+        text,
+        serde_json::to_string(&sampler).expect("serialises"),
+        "a sampler is serialised as its settings"
+    );
+    let back: Builder<2> = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, builder, "round trip through {text}");
+    assert_eq!(back.build(), Ok(sampler), "rebuilds the same sampler");
+}
+
+/// A `Builder` is the unchecked form: it reads settings that `build` (and
+/// deserialising a `PoissonDisk`) then rejects. Its domain is still checked.
+#[test]
+fn builder_defers_validation_to_build() {
+    let bad_radius = with_field("radius", json!(-1.0));
+    let builder: Builder<2> = serde_json::from_value(bad_radius).expect("read unchecked");
+    assert_eq!(
+        builder.build(),
+        Err(Error::InvalidRadius),
+        "checked by build"
+    );
+    let zero_k = with_field("attempts", json!(0));
+    let builder: Builder<2> = serde_json::from_value(zero_k).expect("read unchecked");
+    assert_eq!(
+        builder.build(),
+        Err(Error::ZeroAttempts),
+        "checked by build"
+    );
+    let empty = with_field(
+        "domain",
+        json!({"lo": [0.0, 1.0], "hi": [1.0, 1.0], "periodic": [false, false]}),
+    );
+    let message = match serde_json::from_value::<Builder<2>>(empty) {
+        Ok(b) => panic!("an empty domain was read: {b:?}"),
+        Err(e) => e.to_string(),
+    };
+    assert_mentions(&message, &["axis 1", "lo must be < hi"]);
+}
+
+#[test]
+fn domain_3d_round_trips() {
+    let domain = Domain::new([-1.0, 0.1 + 0.2, 2.5], [1.0, 3.0, 1e10])
+        .expect("valid box")
+        .with_periodic([true, false, true]);
+    let text = serde_json::to_string(&domain).expect("serialises");
+    let back: Domain<3> = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, domain, "round trip through {text}");
+    assert_eq!(
+        back.lo()[1].to_bits(),
+        (0.1f64 + 0.2).to_bits(),
+        "bit-exact bound"
+    );
+}
+
+#[test]
+fn enums_are_plain_strings() {
+    for (candidates, name) in [
+        (Candidates::Annulus, "\"Annulus\""),
+        (Candidates::Sphere, "\"Sphere\""),
+    ] {
+        assert_eq!(
+            serde_json::to_string(&candidates).expect("serialises"),
+            name,
+            "{candidates:?}"
+        );
+        assert_eq!(
+            serde_json::from_str::<Candidates>(name).expect("deserialises"),
+            candidates,
+            "{name}"
+        );
+    }
+    for (layout, name) in [
+        (GridLayout::Auto, "\"Auto\""),
+        (GridLayout::Dense, "\"Dense\""),
+        (GridLayout::Sparse, "\"Sparse\""),
+    ] {
+        assert_eq!(
+            serde_json::to_string(&layout).expect("serialises"),
+            name,
+            "{layout:?}"
+        );
+        assert_eq!(
+            serde_json::from_str::<GridLayout>(name).expect("deserialises"),
+            layout,
+            "{name}"
+        );
+    }
+    assert!(
+        serde_json::from_str::<Candidates>("\"Disk\"").is_err(),
+        "unknown variant"
+    );
+}
+
+// ---------------------------------------------------------------- defaults
+
+#[test]
+fn missing_optional_fields_get_defaults() {
+    let minimal = json!({
+        "domain": {"lo": [0.0, 0.0], "hi": [1.0, 2.0], "periodic": [false, true]},
+        "radius": 0.05,
+    });
+    let sampler: PoissonDisk2 = serde_json::from_value(minimal).expect("deserialises");
+    assert_eq!(sampler.attempts(), DEFAULT_ATTEMPTS, "attempts");
+    assert_eq!(sampler.attempts(), 30, "Bridson's k");
+    assert_eq!(sampler.candidates(), Candidates::Annulus, "candidates");
+    assert_eq!(sampler.layout(), GridLayout::Auto, "layout");
+    assert_eq!(
+        sampler.max_grid_bytes(),
+        DEFAULT_MAX_GRID_BYTES,
+        "max_grid_bytes"
+    );
+    assert_eq!(sampler.max_points(), None, "max_points");
+    let built = PoissonDisk2::new(
+        Domain::from_extent([1.0, 2.0])
+            .expect("box")
+            .with_periodic([false, true]),
+        0.05,
+    )
+    .expect("valid");
+    assert_eq!(sampler, built, "same as PoissonDisk::new");
+}
+
+#[test]
+fn required_fields_are_required() {
+    let no_radius = json!({
+        "domain": {"lo": [0.0, 0.0], "hi": [1.0, 1.0], "periodic": [false, false]},
+    });
+    assert_mentions(&error_of::<PoissonDisk2>(&no_radius), &["radius"]);
+    let no_domain = json!({ "radius": 0.1 });
+    assert_mentions(&error_of::<PoissonDisk2>(&no_domain), &["domain"]);
+    let no_hi = json!({"lo": [0.0, 0.0], "periodic": [false, false]});
+    assert_mentions(&error_of::<Domain<2>>(&no_hi), &["hi"]);
+}
+
+// ---------------------------------------------------------------- validation
+
+fn with_field(key: &str, value: Value) -> Value {
+    let mut v = json!({
+        "domain": {"lo": [0.0, 0.0], "hi": [1.0, 1.0], "periodic": [false, false]},
+        "radius": 0.1,
+    });
+    v[key] = value;
+    v
+}
+
+#[test]
+fn negative_radius_is_rejected() {
+    let message = error_of::<PoissonDisk2>(&with_field("radius", json!(-1.0)));
+    assert_mentions(&message, &["radius", "> 0"]);
+    let message = error_of::<PoissonDisk2>(&with_field("radius", json!(0.0)));
+    assert_mentions(&message, &["radius"]);
+    let message = error_of::<PoissonDisk2>(&with_field("radius", json!(1e-200)));
+    assert_mentions(&message, &["radius"]);
+}
+
+#[test]
+fn empty_box_is_rejected() {
+    let equal = json!({"lo": [0.0, 1.0], "hi": [1.0, 1.0], "periodic": [false, false]});
+    assert_mentions(
+        &error_of::<Domain<2>>(&equal),
+        &["axis 1", "lo must be < hi"],
+    );
+    let reversed = json!({"lo": [2.0, 0.0], "hi": [1.0, 1.0], "periodic": [false, false]});
+    assert_mentions(
+        &error_of::<Domain<2>>(&reversed),
+        &["axis 0", "lo must be < hi"],
+    );
+    // Nested in a sampler too.
+    assert_mentions(
+        &error_of::<PoissonDisk2>(&with_field("domain", reversed)),
+        &["axis 0", "lo must be < hi"],
+    );
+}
+
+#[test]
+fn overflowing_extent_is_rejected() {
+    let huge = json!({"lo": [-1e308], "hi": [1e308], "periodic": [false]});
+    assert_mentions(&error_of::<Domain<1>>(&huge), &["axis 0", "overflow"]);
+}
+
+#[test]
+fn zero_dimension_is_rejected() {
+    let empty = json!({"lo": [], "hi": [], "periodic": []});
+    assert_mentions(&error_of::<Domain<0>>(&empty), &["dimension"]);
+}
+
+#[test]
+fn zero_attempts_is_rejected() {
+    let message = error_of::<PoissonDisk2>(&with_field("attempts", json!(0)));
+    assert_mentions(&message, &["attempts", "at least 1"]);
+}
+
+#[test]
+fn wrong_array_length_is_rejected() {
+    for (field, bad) in [
+        ("lo", json!([0.0, 0.0, 0.0])),
+        ("lo", json!([0.0])),
+        ("hi", json!([])),
+        ("periodic", json!([true, false, true])),
+        ("periodic", json!([true])),
+    ] {
+        let mut domain = json!({"lo": [0.0, 0.0], "hi": [1.0, 1.0], "periodic": [false, false]});
+        domain[field] = bad.clone();
+        let message = error_of::<Domain<2>>(&domain);
+        assert_mentions(&message, &["invalid length", "array of 2 elements"]);
+        let message = error_of::<PoissonDisk2>(&with_field("domain", domain));
+        assert_mentions(&message, &["invalid length", "array of 2 elements"]);
+    }
+}
+
+#[test]
+fn grid_over_budget_is_rejected() {
+    let dense_small_budget = with_field("layout", json!("Dense"));
+    let mut v = dense_small_budget;
+    v["radius"] = json!(0.001);
+    v["max_grid_bytes"] = json!(1000);
+    assert_mentions(&error_of::<PoissonDisk2>(&v), &["budget of 1000 bytes"]);
+    let huge = with_field(
+        "domain",
+        json!({"lo": [0.0, 0.0], "hi": [1e6, 1e6], "periodic": [false, false]}),
+    );
+    let mut tiny_r = huge;
+    tiny_r["radius"] = json!(1e-3);
+    assert_mentions(&error_of::<PoissonDisk2>(&tiny_r), &["budget"]);
+}
+
+#[test]
+fn wrong_types_are_rejected() {
+    assert!(
+        serde_json::from_value::<PoissonDisk2>(with_field("radius", json!("0.1"))).is_err(),
+        "radius as a string"
+    );
+    assert!(
+        serde_json::from_value::<PoissonDisk2>(with_field("attempts", json!(-3))).is_err(),
+        "negative attempts"
+    );
+    assert!(
+        serde_json::from_value::<PoissonDisk2>(with_field("candidates", json!("Disk"))).is_err(),
+        "unknown candidates"
+    );
+}
