@@ -74,10 +74,10 @@ const CASES: &[Case] = &[
         what: What::Library(Candidates::Annulus, GridLayout::Auto),
     },
     Case {
-        name: "4d-annulus-dense",
+        name: "4d-annulus-sparse",
         dim: 4,
         radius: 0.0418,
-        what: What::Library(Candidates::Annulus, GridLayout::Dense),
+        what: What::Library(Candidates::Annulus, GridLayout::Sparse),
     },
     Case {
         name: "4d-sphere",

@@ -64,7 +64,7 @@
 //! In 2-D and 3-D the dense grid stores points inline in cells of side
 //! `r/√N` and checks a precomputed, nearest-first list of neighbour cells,
 //! so most rejected candidates cost one or two cache-resident distance
-//! checks. From 4-D up (or when the dense grid would exceed the memory
+//! checks. From 5-D up (or when the dense grid would exceed the memory
 //! budget) a sparse hash grid is used, whose memory grows with the number of
 //! points. `README.md` has measured throughput against a textbook
 //! implementation.

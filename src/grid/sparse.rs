@@ -1,7 +1,7 @@
 //! The sparse background grid: a hash map from cells to the points in them.
 //!
 //! Used where a dense grid would not fit the memory budget (a huge box) or
-//! would search too many cells (4-D and above). Cells have side `≈ r`, so a
+//! would search too many cells (5-D and above). Cells have side `≈ r`, so a
 //! cell holds a few points and a search visits only the cells whose box comes
 //! within `r` of the candidate, found by branch and bound over the axes:
 //! about `Σ_k C(N,k)·V_k` cells (9 in 2-D, 50 in 4-D, 1 170 in 8-D). Memory
