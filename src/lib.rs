@@ -79,6 +79,7 @@ mod grid;
 mod random;
 #[cfg(feature = "serde")]
 mod serde_array;
+mod tiled;
 mod vector;
 
 pub use crate::annulus::Candidates;
@@ -90,6 +91,7 @@ pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
+pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
 pub use rand;
 
 /// The README's examples, run as doctests.

@@ -91,7 +91,7 @@ pub(crate) trait NeighbourGrid<const N: usize> {
 /// axis: a few relative roundings of a value `<= max_cells`, doubled because
 /// both points of a pair can be off, plus a floor for the stencil test's own
 /// rounding.
-fn rounding_margin(max_cells: f64) -> f64 {
+pub(crate) fn rounding_margin(max_cells: f64) -> f64 {
     64.0 * f64::EPSILON * (max_cells + 4.0) + 1e-9
 }
 

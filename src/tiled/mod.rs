@@ -1,0 +1,573 @@
+//! Streaming mode: a 2-D Poisson disk set over a `W × H` raster, produced
+//! pixel by pixel in scan order (left to right, top to bottom), each pixel
+//! with its points in raster coordinates, while memory stays proportional to
+//! one row of pixels.
+//!
+//! # Two schemes
+//! - [`Scheme::Sweep`] (default): one Bridson process over the whole image,
+//!   blind to pixels. Active points wait in a priority queue keyed by
+//!   `y + u·J` (`u` uniform, `J = 4r`), and the process always works the
+//!   smallest key: `k` candidates around it, the first valid one kept. The
+//!   work front thus sweeps down the image in a band about `J` tall, in
+//!   random order inside the band. Row `y` is complete once the smallest
+//!   key passes `y + 1 + 2r + J` (no active point left can reach it); its
+//!   pixels are then emitted. Pausing to emit changes nothing in the order
+//!   of the work, so pixel and row borders leave no trace in the set.
+//!   (An earlier version finished pixel by pixel, working the active points
+//!   within `2r` of the pixel: the front then stopped `2r` below each row
+//!   and left a seam there, measured as a ±10 % density ripple inside
+//!   pixels.)
+//! - [`Scheme::Paper`]: the scheme of Ye's "Implementing Bridson's Fast
+//!   Poisson Disk Sampling in PBRT" (§3): every pixel starts from a fresh
+//!   random seed, grows only inside itself, and checks its candidates against
+//!   the points of the pixels already made. Valid too, but with a strong
+//!   density bias inside each pixel (sparse near its left and top edges,
+//!   dense near its right and bottom ones). Kept for comparison.
+//!
+//! Both keep the guarantee across pixel borders: every candidate is checked
+//! against every point within `r`, whichever pixel holds it.
+
+mod window;
+
+use crate::annulus::{CandidateSampler, Candidates};
+use crate::error::Error;
+use crate::random::{DefaultRng, below, seeded_rng, unit};
+use crate::vector::add;
+use core::cmp::Ordering;
+use core::iter::FusedIterator;
+use rand::Rng;
+use std::collections::BinaryHeap;
+use window::{Window, WindowPlan};
+
+/// How the streaming mode builds each pixel (see the [module docs](self)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Scheme {
+    /// One process swept across the image in scan order: no border bias.
+    #[default]
+    Sweep,
+    /// Ye's per-pixel scheme: a fresh seed per pixel, growth inside it.
+    Paper,
+}
+
+/// Points per `r²` that the streaming mode produces at `k = 30`, used to
+/// turn a desired number of samples per pixel into a radius:
+/// `r = sqrt(DENSITY / n)`. Measured over large images (see
+/// `examples/stream.rs`); the paper's rule `r = sqrt(8 / (5πn))` assumes
+/// 0.509, which yields about 1.23× the points asked for.
+const DENSITY_ANNULUS: f64 = 0.62;
+/// As [`DENSITY_ANNULUS`], for the on-sphere candidates.
+const DENSITY_SPHERE: f64 = 0.88;
+
+/// The default memory budget of the rolling window: 256 MiB.
+pub const DEFAULT_MAX_WINDOW_BYTES: u64 = 1 << 28;
+
+/// A validated streaming sampler over a `width × height` raster.
+///
+/// Build it with [`Tiled::builder`], then stream the pixels with
+/// [`pixels_seeded`](Self::pixels_seeded) or [`pixels`](Self::pixels).
+///
+/// # Example: four samples per pixel, pixel by pixel
+/// ```
+/// use bridson::Tiled;
+/// let tiled = Tiled::builder(64, 48).per_pixel(4.0).build()?;
+/// let mut total = 0;
+/// for pixel in tiled.pixels_seeded(7) {
+///     for p in &pixel.points {
+///         // Raster coordinates, inside the pixel.
+///         assert_eq!((p[0] as u32, p[1] as u32), (pixel.x, pixel.y));
+///     }
+///     total += pixel.points.len();
+/// }
+/// assert!((total as f64 / (64.0 * 48.0) - 4.0).abs() < 0.5);
+/// # Ok::<(), bridson::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tiled {
+    settings: TiledBuilder,
+    radius: f64,
+    plan: WindowPlan,
+}
+
+/// How the spacing of a streamed set is given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Spacing {
+    Radius(f64),
+    PerPixel(f64),
+}
+
+/// The settings of a [`Tiled`] sampler, checked together by
+/// [`build`](Self::build).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TiledBuilder {
+    width: u32,
+    height: u32,
+    spacing: Spacing,
+    attempts: u32,
+    candidates: Candidates,
+    scheme: Scheme,
+    max_window_bytes: u64,
+}
+
+impl TiledBuilder {
+    /// The minimum distance, in pixels.
+    #[must_use]
+    pub fn radius(mut self, radius: f64) -> Self {
+        self.spacing = Spacing::Radius(radius);
+        self
+    }
+
+    /// Asks for about `n` points per pixel on average: the radius follows
+    /// from the density the chosen candidates reach (`r = sqrt(0.62 / n)`
+    /// for the annulus, `sqrt(0.88 / n)` on the sphere, at `k = 30`).
+    #[must_use]
+    pub fn per_pixel(mut self, n: f64) -> Self {
+        self.spacing = Spacing::PerPixel(n);
+        self
+    }
+
+    /// Attempts `k` per active point (default 30).
+    #[must_use]
+    pub fn attempts(mut self, k: u32) -> Self {
+        self.attempts = k;
+        self
+    }
+
+    /// Candidate distribution (default [`Candidates::Annulus`]).
+    #[must_use]
+    pub fn candidates(mut self, candidates: Candidates) -> Self {
+        self.candidates = candidates;
+        self
+    }
+
+    /// Streaming scheme (default [`Scheme::Sweep`]).
+    #[must_use]
+    pub fn scheme(mut self, scheme: Scheme) -> Self {
+        self.scheme = scheme;
+        self
+    }
+
+    /// Memory budget of the rolling window in bytes (default
+    /// [`DEFAULT_MAX_WINDOW_BYTES`], 256 MiB).
+    #[must_use]
+    pub fn max_window_bytes(mut self, bytes: u64) -> Self {
+        self.max_window_bytes = bytes;
+        self
+    }
+
+    /// Checks every setting and sizes the window.
+    ///
+    /// # Errors
+    /// [`Error::EmptyBox`] if the width (axis 0) or height (axis 1) is 0;
+    /// [`Error::InvalidRadius`] if the radius — given, or derived from the
+    /// samples per pixel — is NaN, infinite, `<= 0` or outside
+    /// `1e-150 ..= 1e150`, or if no spacing was given; [`Error::ZeroAttempts`]
+    /// if `k == 0`; [`Error::GridTooLarge`] if the window exceeds its budget.
+    pub fn build(self) -> Result<Tiled, Error> {
+        if self.width == 0 {
+            return Err(Error::EmptyBox { axis: 0 });
+        }
+        if self.height == 0 {
+            return Err(Error::EmptyBox { axis: 1 });
+        }
+        let density = match self.candidates {
+            Candidates::Sphere => DENSITY_SPHERE,
+            _ => DENSITY_ANNULUS,
+        };
+        let radius = match self.spacing {
+            Spacing::Radius(r) => r,
+            Spacing::PerPixel(n) if n > 0.0 => (density / n).sqrt(),
+            Spacing::PerPixel(_) => f64::NAN,
+        };
+        if !(1e-150..=1e150).contains(&radius) {
+            return Err(Error::InvalidRadius);
+        }
+        if self.attempts == 0 {
+            return Err(Error::ZeroAttempts);
+        }
+        let too_large = |needed| Error::GridTooLarge {
+            needed,
+            budget: self.max_window_bytes,
+        };
+        let width = usize::try_from(self.width).map_err(|_| too_large(u64::MAX))?;
+        let height = usize::try_from(self.height).map_err(|_| too_large(u64::MAX))?;
+        let plan = WindowPlan::new(width, height, radius).ok_or(too_large(u64::MAX))?;
+        if plan.bytes > self.max_window_bytes {
+            return Err(too_large(plan.bytes));
+        }
+        Ok(Tiled {
+            settings: self,
+            radius,
+            plan,
+        })
+    }
+}
+
+/// One pixel of the stream: its position and its points, in raster
+/// coordinates (`x <= p[0] < x + 1`, `y <= p[1] < y + 1`), in generation
+/// order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Pixel {
+    /// Column, from 0 at the left.
+    pub x: u32,
+    /// Row, from 0 at the top.
+    pub y: u32,
+    /// The pixel's points.
+    pub points: Vec<[f64; 2]>,
+}
+
+impl Tiled {
+    /// Settings for a `width × height` raster; give the spacing with
+    /// [`TiledBuilder::radius`] or [`TiledBuilder::per_pixel`].
+    pub fn builder(width: u32, height: u32) -> TiledBuilder {
+        TiledBuilder {
+            width,
+            height,
+            spacing: Spacing::Radius(f64::NAN),
+            attempts: crate::DEFAULT_ATTEMPTS,
+            candidates: Candidates::default(),
+            scheme: Scheme::default(),
+            max_window_bytes: DEFAULT_MAX_WINDOW_BYTES,
+        }
+    }
+
+    /// The minimum distance actually used, in pixels.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Raster width in pixels.
+    pub fn width(&self) -> u32 {
+        self.settings.width
+    }
+
+    /// Raster height in pixels.
+    pub fn height(&self) -> u32 {
+        self.settings.height
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.settings.scheme
+    }
+
+    /// Bytes of the rolling window (grid and per-pixel lists, without the
+    /// points themselves): proportional to the width, independent of the
+    /// height.
+    pub fn window_bytes(&self) -> u64 {
+        self.plan.bytes
+    }
+
+    /// The pixels in scan order, drawn from `rng`.
+    pub fn pixels<R: Rng>(&self, rng: R) -> Pixels<R> {
+        let s = &self.settings;
+        Pixels {
+            rng,
+            window: Window::new(self.plan, self.radius),
+            candidates: CandidateSampler::new(s.candidates, self.radius, s.attempts),
+            attempts: s.attempts,
+            scheme: s.scheme,
+            width: self.plan.width,
+            height: self.plan.height,
+            rows_below: self.plan.rows_below,
+            near: near_offsets(self.radius, self.plan.width.max(self.plan.height)),
+            queue: BinaryHeap::new(),
+            jitter: SWEEP_BAND * self.radius,
+            reach: 2.0 * self.radius,
+            started: false,
+            next: 0,
+        }
+    }
+
+    /// The pixels in scan order for `seed`: the same seed gives the same
+    /// stream, byte for byte, on every run and platform.
+    pub fn pixels_seeded(&self, seed: u64) -> Pixels<DefaultRng> {
+        self.pixels(seeded_rng(seed))
+    }
+}
+
+/// The pixel stream of a [`Tiled`] sampler, in scan order.
+#[derive(Debug)]
+pub struct Pixels<R> {
+    rng: R,
+    window: Window,
+    candidates: CandidateSampler<2>,
+    attempts: u32,
+    scheme: Scheme,
+    width: usize,
+    height: usize,
+    rows_below: usize,
+    /// Pixel offsets `(dx, dy)` whose box comes within `2r` of a pixel.
+    near: Vec<(isize, isize)>,
+    /// Sweep scheme: the active points, smallest key first.
+    queue: BinaryHeap<Active>,
+    /// `J`: height of the band in which the sweep works in random order.
+    jitter: f64,
+    /// `2r`: no candidate lands farther than this from its parent.
+    reach: f64,
+    started: bool,
+    /// Index of the next pixel in scan order.
+    next: usize,
+}
+
+/// Height of the sweep's random-order band, in radii. Taller bands are
+/// closer to Bridson's fully random pick and cost window rows.
+const SWEEP_BAND: f64 = 4.0;
+
+/// An active point of the sweep with its queue key `y + u·J`.
+#[derive(Clone, Copy, Debug)]
+struct Active {
+    key: f64,
+    point: [f64; 2],
+}
+
+impl PartialEq for Active {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Active {}
+
+impl PartialOrd for Active {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Active {
+    /// Reversed on the key, so that `BinaryHeap` (a max-heap) pops the
+    /// smallest key; ties broken on the coordinates, for a total order.
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .key
+            .total_cmp(&self.key)
+            .then_with(|| other.point[1].total_cmp(&self.point[1]))
+            .then_with(|| other.point[0].total_cmp(&self.point[0]))
+    }
+}
+
+impl<R: Rng> Pixels<R> {
+    /// Makes the next pixel and swaps its points into `points` (whose old
+    /// contents are dropped), reusing its allocation; returns the pixel's
+    /// `(x, y)`, or `None` at the end of the image.
+    pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
+        let total = self.width.checked_mul(self.height)?;
+        if self.next >= total {
+            return None;
+        }
+        let (x, y) = (self.next % self.width, self.next / self.width);
+        if x == 0 {
+            self.window.advance_to_row(y);
+        }
+        match self.scheme {
+            Scheme::Paper => self.finish_alone(x, y),
+            _ if x == 0 => self.finish_row(y),
+            _ => {}
+        }
+        self.next += 1;
+        points.clear();
+        core::mem::swap(points, &mut self.window.slot_mut(x, y).points);
+        Some((u32::try_from(x).ok()?, u32::try_from(y).ok()?))
+    }
+
+    /// Sweep scheme: work the queue until no active point can reach row
+    /// `y`, seeding pixels of the row that no process has come near.
+    fn finish_row(&mut self, y: usize) {
+        if !self.started {
+            self.started = true;
+            self.seed_row(0);
+        }
+        #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+        let done_at = (y + 1) as f64 + self.reach + self.jitter;
+        loop {
+            while let Some(&top) = self.queue.peek() {
+                if top.key >= done_at {
+                    break;
+                }
+                self.queue.pop();
+                if let Some(child) = self.spawn(&top.point, (0, y), false) {
+                    self.push(child);
+                    // The parent stays active, under a fresh key.
+                    self.push(top.point);
+                }
+            }
+            // A connected front reaches every pixel; this only seeds
+            // pixels no point has come within 2r of (say, r much larger
+            // than the image), and then goes on working the queue.
+            if !self.seed_row(y) {
+                return;
+            }
+        }
+    }
+
+    /// Seeds each pixel of row `y` with nothing within `2r`; whether any
+    /// seed was placed.
+    fn seed_row(&mut self, y: usize) -> bool {
+        let mut seeded = false;
+        for x in 0..self.width {
+            if !self.anything_near(x, y) && self.seed(x, y) {
+                seeded = true;
+            }
+        }
+        seeded
+    }
+
+    fn push(&mut self, point: [f64; 2]) {
+        let key = point[1] + self.jitter * unit(&mut self.rng);
+        self.queue.push(Active { key, point });
+    }
+
+    /// Paper scheme: a fresh seed, then Bridson inside the pixel only.
+    fn finish_alone(&mut self, x: usize, y: usize) {
+        self.seed(x, y);
+        loop {
+            let len = self.window.slot(x, y).active.len();
+            if len == 0 {
+                return;
+            }
+            let i = below(&mut self.rng, len);
+            let Some(&parent) = self.window.slot(x, y).active.get(i) else {
+                return;
+            };
+            if self.spawn(&parent, (x, y), true).is_none() {
+                self.window.slot_mut(x, y).active.swap_remove(i);
+            }
+        }
+    }
+
+    /// Up to `k` candidates around `parent`; stores and returns the first
+    /// valid one. Candidates in pixels already emitted (before `current` in
+    /// scan order), outside the raster or below the window are refused;
+    /// with `only_current`, so is any outside the current pixel.
+    fn spawn(
+        &mut self,
+        parent: &[f64; 2],
+        current: (usize, usize),
+        only_current: bool,
+    ) -> Option<[f64; 2]> {
+        let mut state = self.candidates.start(&mut self.rng);
+        for _ in 0..self.attempts {
+            let offset = self.candidates.offset(&mut self.rng, &mut state);
+            let c = add(parent, &offset);
+            let Some(pixel) = self.pixel_of(&c) else {
+                continue;
+            };
+            let before = (pixel.1, pixel.0) < (current.1, current.0);
+            if before
+                || (only_current && pixel != current)
+                || pixel.1 > current.1 + self.rows_below
+                || self.window.conflicts(&c)
+            {
+                continue;
+            }
+            if self.window.insert(c, pixel) {
+                return Some(c);
+            }
+        }
+        None
+    }
+
+    /// Up to `k` uniform darts in the pixel; stores the first valid one
+    /// (queued, for the sweep) and says whether there was one.
+    fn seed(&mut self, x: usize, y: usize) -> bool {
+        #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
+        let (fx, fy) = (x as f64, y as f64);
+        for _ in 0..self.attempts {
+            let p = [fx + unit(&mut self.rng), fy + unit(&mut self.rng)];
+            if self.pixel_of(&p) != Some((x, y)) || self.window.conflicts(&p) {
+                continue;
+            }
+            if self.window.insert(p, (x, y)) {
+                if self.scheme != Scheme::Paper {
+                    self.push(p);
+                }
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Whether any point, emitted or not, lies in a pixel within `2r` of
+    /// pixel `(x, y)`: if none does, no process has reached it yet and it
+    /// gets a seed.
+    fn anything_near(&self, x: usize, y: usize) -> bool {
+        self.near_pixels(x, y)
+            .any(|(qx, qy)| self.window.slot(qx, qy).count > 0)
+    }
+
+    /// Pixels of the window within `2r` of `(x, y)`.
+    fn near_pixels(&self, x: usize, y: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.near
+            .iter()
+            .filter_map(move |&(dx, dy)| self.in_window(x, y, dx, dy))
+    }
+
+    fn in_window(&self, x: usize, y: usize, dx: isize, dy: isize) -> Option<(usize, usize)> {
+        let qx = x.checked_add_signed(dx)?;
+        let qy = y.checked_add_signed(dy)?;
+        (qx < self.width && qy < self.height && self.window.holds_row(qy)).then_some((qx, qy))
+    }
+
+    /// The pixel holding `p`, or `None` outside the raster.
+    fn pixel_of(&self, p: &[f64; 2]) -> Option<(usize, usize)> {
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+        let (w, h) = (self.width as f64, self.height as f64);
+        if !(p[0] >= 0.0 && p[0] < w && p[1] >= 0.0 && p[1] < h) {
+            return None;
+        }
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "inside the raster, so in 0..width and 0..height"
+        )]
+        let (x, y) = (p[0] as usize, p[1] as usize);
+        Some((x.min(self.width - 1), y.min(self.height - 1)))
+    }
+}
+
+impl<R: Rng> Iterator for Pixels<R> {
+    type Item = Pixel;
+
+    fn next(&mut self) -> Option<Pixel> {
+        let mut points = Vec::new();
+        let (x, y) = self.next_into(&mut points)?;
+        Some(Pixel { x, y, points })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = (self.width * self.height).saturating_sub(self.next);
+        (left, Some(left))
+    }
+}
+
+impl<R: Rng> ExactSizeIterator for Pixels<R> {}
+impl<R: Rng> FusedIterator for Pixels<R> {}
+
+/// Offsets `(dx, dy)` of the pixels whose box comes within `2r` of a
+/// pixel's box (with a relative slack for rounding), clamped to the
+/// raster's size.
+fn near_offsets(radius: f64, size: usize) -> Vec<(isize, isize)> {
+    #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+    let reach_f = (2.0 * radius).ceil().min(size as f64);
+    #[expect(
+        clippy::cast_possible_truncation,
+        reason = "clamped to the raster size"
+    )]
+    let reach = reach_f as isize;
+    let limit = 2.0 * radius * (1.0 + 1e-9);
+    let gap = |d: isize| {
+        #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+        let a = d.unsigned_abs() as f64;
+        (a - 1.0).max(0.0)
+    };
+    let mut offsets = Vec::new();
+    for dy in -reach..=reach {
+        for dx in -reach..=reach {
+            if gap(dx) * gap(dx) + gap(dy) * gap(dy) < limit * limit {
+                offsets.push((dx, dy));
+            }
+        }
+    }
+    offsets
+}

@@ -1,0 +1,217 @@
+//! The streaming mode through its public API: the union of all pixels'
+//! points is a valid Poisson disk set (checked as a whole by the naive
+//! oracle, never pixel by pixel), every point lies in its pixel, pixels come
+//! in scan order, a seed reproduces the stream, and bad settings are errors.
+
+mod common;
+
+use bridson::{Candidates, Error, Pixel, Scheme, Tiled};
+use proptest::prelude::*;
+
+fn stream(tiled: &Tiled, seed: u64) -> Vec<Pixel> {
+    tiled.pixels_seeded(seed).collect()
+}
+
+/// All the stream's promises for one configuration; `Err` with a report.
+fn check_stream(tiled: &Tiled, seed: u64) -> Result<usize, String> {
+    let (w, h) = (tiled.width(), tiled.height());
+    let pixels = stream(tiled, seed);
+    if pixels.len() != (w as usize) * (h as usize) {
+        return Err(format!("{} pixels for {w}x{h}", pixels.len()));
+    }
+    let mut union = Vec::new();
+    for (k, pixel) in pixels.iter().enumerate() {
+        let expected = (k as u32 % w, k as u32 / w);
+        if (pixel.x, pixel.y) != expected {
+            return Err(format!(
+                "pixel #{k} is {:?}, expected {expected:?}",
+                (pixel.x, pixel.y)
+            ));
+        }
+        let lo = [f64::from(pixel.x), f64::from(pixel.y)];
+        let hi = [lo[0] + 1.0, lo[1] + 1.0];
+        let outside = common::out_of_bounds(&pixel.points, lo, hi);
+        if !outside.is_empty() {
+            return Err(format!(
+                "pixel {expected:?} holds points outside it: {outside:?}"
+            ));
+        }
+        union.extend_from_slice(&pixel.points);
+    }
+    let raster = [f64::from(w), f64::from(h)];
+    common::check_points(&union, tiled.radius(), [0.0; 2], raster, [false; 2])?;
+    Ok(union.len())
+}
+
+fn scheme() -> impl Strategy<Value = Scheme> {
+    prop_oneof![Just(Scheme::Sweep), Just(Scheme::Paper)]
+}
+
+fn candidates() -> impl Strategy<Value = Candidates> {
+    prop_oneof![Just(Candidates::Annulus), Just(Candidates::Sphere)]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 48,
+        ..ProptestConfig::default()
+    })]
+
+    /// The union over all pixels, radius from well below to well above a
+    /// pixel, both schemes and candidate kinds.
+    #[test]
+    fn union_is_a_poisson_disk_set(
+        w in 1u32..=14,
+        h in 1u32..=14,
+        // log-uniform radius in 0.12 ..= 3.5 pixels
+        log_r in (0.12f64).ln()..=(3.5f64).ln(),
+        scheme in scheme(),
+        candidates in candidates(),
+        seed in any::<u64>(),
+    ) {
+        let r = log_r.exp();
+        let tiled = Tiled::builder(w, h)
+            .radius(r)
+            .scheme(scheme)
+            .candidates(candidates)
+            .build()
+            .map_err(|e| TestCaseError::fail(format!("{w}x{h} r={r}: {e}")))?;
+        let result = check_stream(&tiled, seed);
+        prop_assert!(
+            result.is_ok(),
+            "{w}x{h}, r = {r}, {scheme:?}, {candidates:?}, seed {seed}: {}",
+            result.err().unwrap_or_default()
+        );
+    }
+
+    /// Same seed, same stream, byte for byte; `next_into` agrees with the
+    /// iterator.
+    #[test]
+    fn a_seed_reproduces_the_stream(
+        w in 1u32..=10,
+        h in 1u32..=10,
+        r in 0.2f64..2.0,
+        scheme in scheme(),
+        seed in any::<u64>(),
+    ) {
+        let tiled = Tiled::builder(w, h).radius(r).scheme(scheme).build().unwrap();
+        let a = stream(&tiled, seed);
+        let b = stream(&tiled, seed);
+        let bits = |ps: &[Pixel]| -> Vec<(u32, u32, Vec<[u64; 2]>)> {
+            ps.iter()
+                .map(|p| (p.x, p.y, p.points.iter().map(|q| q.map(f64::to_bits)).collect()))
+                .collect()
+        };
+        prop_assert_eq!(bits(&a), bits(&b), "seed {}", seed);
+        let mut it = tiled.pixels_seeded(seed);
+        let mut buf = vec![[9.0, 9.0]];
+        for pixel in &a {
+            let at = it.next_into(&mut buf);
+            prop_assert_eq!(at, Some((pixel.x, pixel.y)), "seed {}", seed);
+            prop_assert_eq!(&buf, &pixel.points, "seed {}", seed);
+        }
+        prop_assert_eq!(it.next_into(&mut buf), None, "seed {}: stream ends", seed);
+    }
+}
+
+#[test]
+fn sweep_fills_the_raster_evenly() {
+    // 48 x 48 pixels at 4 per pixel: the mean count is close to 4 and no
+    // pixel is empty (a gap would mean the sweep missed a region).
+    let tiled = Tiled::builder(48, 48).per_pixel(4.0).build().unwrap();
+    let pixels = stream(&tiled, 11);
+    let counts: Vec<usize> = pixels.iter().map(|p| p.points.len()).collect();
+    let mean = counts.iter().sum::<usize>() as f64 / counts.len() as f64;
+    assert!(
+        (mean - 4.0).abs() < 0.25,
+        "mean {mean} per pixel for 4 asked"
+    );
+    assert!(
+        counts.iter().all(|&c| c > 0),
+        "an empty pixel at 4 per pixel"
+    );
+    assert!(check_stream(&tiled, 11).is_ok(), "valid");
+}
+
+#[test]
+fn per_pixel_sets_the_radius_by_the_measured_density() {
+    let annulus = Tiled::builder(8, 8).per_pixel(4.0).build().unwrap();
+    assert!(
+        (annulus.radius() - (0.62f64 / 4.0).sqrt()).abs() < 1e-15,
+        "annulus"
+    );
+    let sphere = Tiled::builder(8, 8)
+        .per_pixel(4.0)
+        .candidates(Candidates::Sphere)
+        .build()
+        .unwrap();
+    assert!(
+        (sphere.radius() - (0.88f64 / 4.0).sqrt()).abs() < 1e-15,
+        "sphere"
+    );
+}
+
+#[test]
+fn the_window_does_not_grow_with_the_height() {
+    let short = Tiled::builder(256, 100).per_pixel(4.0).build().unwrap();
+    let tall = Tiled::builder(256, 100_000).per_pixel(4.0).build().unwrap();
+    assert_eq!(short.window_bytes(), tall.window_bytes(), "window bytes");
+    let wide = Tiled::builder(512, 100).per_pixel(4.0).build().unwrap();
+    assert!(
+        wide.window_bytes() > short.window_bytes(),
+        "grows with the width"
+    );
+}
+
+#[test]
+fn bad_settings_are_errors() {
+    let e = |b: bridson::TiledBuilder| b.build().err();
+    assert_eq!(
+        e(Tiled::builder(0, 4).radius(0.5)),
+        Some(Error::EmptyBox { axis: 0 }),
+        "width 0"
+    );
+    assert_eq!(
+        e(Tiled::builder(4, 0).radius(0.5)),
+        Some(Error::EmptyBox { axis: 1 }),
+        "height 0"
+    );
+    assert_eq!(
+        e(Tiled::builder(4, 4)),
+        Some(Error::InvalidRadius),
+        "no spacing given"
+    );
+    for r in [f64::NAN, f64::INFINITY, -1.0, 0.0, 1e-200] {
+        assert_eq!(
+            e(Tiled::builder(4, 4).radius(r)),
+            Some(Error::InvalidRadius),
+            "radius {r}"
+        );
+    }
+    for n in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
+        assert_eq!(
+            e(Tiled::builder(4, 4).per_pixel(n)),
+            Some(Error::InvalidRadius),
+            "per pixel {n}"
+        );
+    }
+    assert_eq!(
+        e(Tiled::builder(4, 4).radius(0.5).attempts(0)),
+        Some(Error::ZeroAttempts),
+        "k = 0"
+    );
+    assert!(
+        matches!(
+            e(Tiled::builder(4, 4).radius(0.5).max_window_bytes(100)),
+            Some(Error::GridTooLarge { .. })
+        ),
+        "window over budget"
+    );
+    assert!(
+        matches!(
+            e(Tiled::builder(u32::MAX, 4).radius(1e-6)),
+            Some(Error::GridTooLarge { .. })
+        ),
+        "huge window"
+    );
+}
