@@ -1,14 +1,16 @@
 //! Poisson disk points on the command line: samples the box
-//! `lo <= x < lo + extent` in 1 to 8 dimensions with `bridson::PoissonDisk`
-//! and streams the points, as they are generated, as CSV or JSON to a file or
+//! `lo <= x < lo + extent` in 1 to 8 dimensions with `bridson::PoissonDisk`,
+//! or a `W × H` raster pixel by pixel with `bridson::Tiled` (`--pixels`), and
+//! streams the points, as they are generated, as CSV or JSON to a file or
 //! stdout, then prints a one-line summary (count, time, points/s, relative
 //! radius ρ, grid layout) to stderr. Run it as
-//! `cargo run --release --example points -- --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv`;
+//! `cargo run --release --example points -- --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv`
+//! or `cargo run --release --example points -- --pixels 64x48 --per-pixel 4 --format json`;
 //! `--help` lists every flag. Exit status: 0 on success, 1 if writing the
 //! output fails (for example a broken pipe), 2 for bad arguments or
 //! parameters the sampler rejects.
 
-use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk};
+use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk, Scheme, Tiled};
 use std::ffi::OsString;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -18,10 +20,19 @@ use std::time::{Duration, Instant};
 
 const USAGE: &str = "\
 Usage: points --dim D --radius R [OPTIONS]
+       points --pixels WxH (--radius R | --per-pixel N) [--paper] [OPTIONS]
 
 Poisson disk sampling (Bridson) of the box lo <= x < lo + extent: no two
 points closer than R. Points go to stdout (or --out) as they are generated;
 a one-line summary goes to stderr.
+
+With --pixels, a W x H raster is streamed pixel by pixel (bridson::Tiled):
+points in raster coordinates, 0 <= x < W, 0 <= y < H, row 0 first; the
+radius is in pixels (--radius), or follows from the samples wanted per
+pixel (--per-pixel); the JSON output carries the radius actually used.
+--paper uses Ye's per-pixel scheme instead of the default sweep (it shows a
+density bias along pixel edges; for comparison). --dim, if given, must be 2;
+--extent, --lo, --periodic, --periodic-axes and --max-points do not apply.
 
 Required:
   --dim D                  dimension, 1 to 8
@@ -41,6 +52,9 @@ Options:
                              none: write nothing (--out is ignored); the
                                    summary time is then pure generation
   --out FILE               write to FILE instead of stdout
+  --pixels WxH             stream a W x H raster pixel by pixel (see above)
+  --per-pixel N            with --pixels: about N points per pixel
+  --paper                  with --pixels: Ye's per-pixel scheme
   -h, --help               print this help and exit
 
 Flags also accept the form --flag=value. Numbers are printed in the shortest
@@ -49,8 +63,9 @@ form that parses back to the identical f64.
 Exit status: 0 success, 1 error writing the output, 2 bad arguments or
 parameters rejected by the sampler.
 
-Example:
+Examples:
   points --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv
+  points --pixels 64x48 --per-pixel 4 --format json --out raster.json
 ";
 
 /// What to write.
@@ -77,6 +92,18 @@ struct Config {
     max_points: Option<u64>,
     format: Format,
     out: Option<PathBuf>,
+    /// `--pixels`: stream a raster instead of sampling the box.
+    raster: Option<Raster>,
+}
+
+/// The raster mode's settings (`--pixels`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Raster {
+    width: u32,
+    height: u32,
+    /// `--per-pixel`; `None` means `--radius` gives the spacing.
+    per_pixel: Option<f64>,
+    paper: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -157,6 +184,9 @@ where
     let mut max_points: Option<u64> = None;
     let mut format: Option<Format> = None;
     let mut out: Option<PathBuf> = None;
+    let mut pixels: Option<(u32, u32)> = None;
+    let mut per_pixel: Option<f64> = None;
+    let mut paper = false;
 
     let mut args = args.into_iter().map(Into::into);
     while let Some(raw) = args.next() {
@@ -181,6 +211,24 @@ where
             "--periodic" => {
                 no_value(&flag, inline.as_ref())?;
                 periodic_all = true;
+            }
+            "--paper" => {
+                no_value(&flag, inline.as_ref())?;
+                paper = true;
+            }
+            "--pixels" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let parsed = v
+                    .split_once('x')
+                    .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)));
+                let size = parsed.ok_or_else(|| {
+                    format!("{flag} expects WxH with whole numbers, like 64x48, got '{v}'")
+                })?;
+                set(&mut pixels, size, &flag)?;
+            }
+            "--per-pixel" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(&mut per_pixel, parse_number(&flag, &v, "a number")?, &flag)?;
             }
             "--dim" => {
                 let v = text_value(&flag, inline, &mut args)?;
@@ -262,6 +310,51 @@ where
         }
     }
 
+    if let Some((width, height)) = pixels {
+        if dim.is_some_and(|d| d != 2) {
+            return Err("--pixels makes a 2-D raster: --dim must be 2 if given".to_owned());
+        }
+        let not_with_pixels = [
+            ("--extent", extent.is_some()),
+            ("--lo", lo.is_some()),
+            ("--periodic", periodic_all),
+            ("--periodic-axes", periodic_axes.is_some()),
+            ("--max-points", max_points.is_some()),
+        ];
+        if let Some((flag, _)) = not_with_pixels.iter().find(|(_, given)| *given) {
+            return Err(format!("{flag} does not apply with --pixels"));
+        }
+        let radius = match (radius, per_pixel) {
+            (Some(_), Some(_)) => return Err("give --radius or --per-pixel, not both".to_owned()),
+            (None, None) => return Err("--pixels needs --radius or --per-pixel".to_owned()),
+            (r, _) => r.unwrap_or(f64::NAN),
+        };
+        return Ok(Command::Run(Config {
+            dim: 2,
+            radius,
+            extent: None,
+            lo: None,
+            periodic: vec![false; 2],
+            attempts: attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS),
+            candidates: candidates.unwrap_or_default(),
+            seed: seed.unwrap_or(0),
+            max_points: None,
+            format: format.unwrap_or(Format::Csv),
+            out,
+            raster: Some(Raster {
+                width,
+                height,
+                per_pixel,
+                paper,
+            }),
+        }));
+    }
+    if per_pixel.is_some() {
+        return Err("--per-pixel needs --pixels".to_owned());
+    }
+    if paper {
+        return Err("--paper needs --pixels".to_owned());
+    }
     let dim = dim.ok_or("missing --dim")?;
     if !(1..=8).contains(&dim) {
         return Err(format!("--dim must be from 1 to 8, got {dim}"));
@@ -301,6 +394,7 @@ where
         max_points,
         format: format.unwrap_or(Format::Csv),
         out,
+        raster: None,
     }))
 }
 
@@ -367,6 +461,9 @@ fn parse_list<T: FromStr>(flag: &str, text: &str, expected: &str) -> Result<Vec<
 // Sampling and output
 
 fn dispatch(config: &Config) -> Result<(), Failure> {
+    if let Some(raster) = config.raster {
+        return run_raster(config, raster);
+    }
     match config.dim {
         1 => run::<1>(config),
         2 => run::<2>(config),
@@ -460,7 +557,7 @@ fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], St
 /// Streams the points of `seed` to `out` in `format`, flushing at the end.
 /// Returns the count and the time from building the grid to the flush.
 fn write_points<const N: usize, W: Write>(
-    mut out: W,
+    out: W,
     format: Format,
     sampler: &PoissonDisk<N>,
     seed: u64,
@@ -468,6 +565,20 @@ fn write_points<const N: usize, W: Write>(
     let start = Instant::now();
     let points = sampler.iter_seeded(seed);
     let layout = points.layout();
+    let domain = sampler.domain();
+    let header = (sampler.radius(), domain.lo(), domain.hi());
+    let count = write_stream(out, format, header, points)?;
+    Ok((count, start.elapsed(), layout))
+}
+
+/// Writes `points` as they come in `format`, with the JSON header values
+/// `(radius, lo, hi)`; returns the count.
+fn write_stream<const N: usize, W: Write>(
+    mut out: W,
+    format: Format,
+    (radius, lo, hi): (f64, [f64; N], [f64; N]),
+    points: impl Iterator<Item = [f64; N]>,
+) -> io::Result<u64> {
     let mut count: u64 = 0;
     match format {
         Format::None => {
@@ -490,15 +601,10 @@ fn write_points<const N: usize, W: Write>(
             }
         }
         Format::Json => {
-            let domain = sampler.domain();
-            write!(
-                out,
-                "{{\"dim\":{N},\"radius\":{},\"lo\":[",
-                sampler.radius()
-            )?;
-            write_values(&mut out, &domain.lo())?;
+            write!(out, "{{\"dim\":{N},\"radius\":{radius},\"lo\":[")?;
+            write_values(&mut out, &lo)?;
             out.write_all(b"],\"hi\":[")?;
-            write_values(&mut out, &domain.hi())?;
+            write_values(&mut out, &hi)?;
             out.write_all(b"],\"points\":[")?;
             for p in points {
                 out.write_all(if count == 0 { b"[" } else { b",[" })?;
@@ -510,7 +616,55 @@ fn write_points<const N: usize, W: Write>(
         }
     }
     out.flush()?;
-    Ok((count, start.elapsed(), layout))
+    Ok(count)
+}
+
+/// `--pixels`: streams the raster pixel by pixel, row 0 first.
+fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
+    let builder = Tiled::builder(raster.width, raster.height)
+        .attempts(config.attempts)
+        .candidates(config.candidates)
+        .scheme(if raster.paper {
+            Scheme::Paper
+        } else {
+            Scheme::Sweep
+        });
+    let builder = match raster.per_pixel {
+        Some(n) => builder.per_pixel(n),
+        None => builder.radius(config.radius),
+    };
+    let tiled = builder.build().map_err(|e| Failure::Usage(e.to_string()))?;
+    let (w, h) = (f64::from(raster.width), f64::from(raster.height));
+    let header = (tiled.radius(), [0.0, 0.0], [w, h]);
+    let start = Instant::now();
+    let points = tiled
+        .pixels_seeded(config.seed)
+        .flat_map(|pixel| pixel.points);
+    let written = match (config.format, &config.out) {
+        (Format::None, _) => write_stream(io::sink(), Format::None, header, points),
+        (format, Some(path)) => {
+            let file = File::create(path)
+                .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
+            write_stream(BufWriter::new(file), format, header, points)
+        }
+        (format, None) => write_stream(BufWriter::new(io::stdout().lock()), format, header, points),
+    };
+    let count = written.map_err(|e| Failure::Io(format!("writing the points: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let rho = usize::try_from(count)
+        .ok()
+        .and_then(|n| bridson::relative_radius::<2>(tiled.radius(), n, w * h))
+        .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
+    #[expect(clippy::cast_precision_loss, reason = "a rate, for display only")]
+    let rate = count as f64 / seconds / 1e6;
+    report(&format!(
+        "points: {count} in {seconds:.3} s ({rate:.2} M/s), rho {rho}, {}x{} pixels, r = {}, {:?} scheme",
+        raster.width,
+        raster.height,
+        tiled.radius(),
+        tiled.scheme()
+    ));
+    Ok(())
 }
 
 /// Comma-separated values with `{}` (shortest round-trip form, never an
@@ -590,8 +744,42 @@ mod tests {
             max_points: None,
             format: Format::Csv,
             out: Some(PathBuf::from("pts.csv")),
+            raster: None,
         };
         assert_eq!(c, expected, "example command");
+    }
+
+    #[test]
+    fn parses_the_raster_flags() {
+        let c = config("--pixels 64x48 --per-pixel 4 --paper --seed 3");
+        assert_eq!(
+            c.raster,
+            Some(Raster {
+                width: 64,
+                height: 48,
+                per_pixel: Some(4.0),
+                paper: true
+            }),
+            "raster settings"
+        );
+        assert_eq!((c.dim, c.seed), (2, 3), "dim and seed");
+        let r = config("--pixels=5x7 --radius 0.8 --dim 2");
+        assert_eq!(r.radius, 0.8, "radius");
+        assert_eq!(r.raster.map(|x| x.per_pixel), Some(None), "spacing from --radius");
+        for bad in [
+            "--pixels 5x7",
+            "--pixels 5x7 --radius 1 --per-pixel 2",
+            "--pixels 5x7 --radius 1 --dim 3",
+            "--pixels 5x7 --radius 1 --extent 1,1",
+            "--pixels 5x7 --radius 1 --periodic",
+            "--pixels 5x7 --radius 1 --max-points 3",
+            "--pixels 5by7 --radius 1",
+            "--pixels -5x7 --radius 1",
+            "--dim 2 --radius 1 --per-pixel 4",
+            "--dim 2 --radius 1 --paper",
+        ] {
+            assert!(parse(bad).is_err(), "should be rejected: {bad}");
+        }
     }
 
     #[test]
