@@ -7,8 +7,11 @@
 //! ```text
 //! cargo run --release --example stream                          # 1024 x 1024, 4 per pixel
 //! cargo run --release --example stream -- --pixels 512x512 --radius 0.8 --seed 3
-//! cargo run --release --example stream -- --pixels 16384x16384 --per-pixel 4 --scheme sweep --no-batch
+//! cargo run --release --example stream -- --pixels 16384x16384 --per-pixel 4 --scheme sweep --no-batch --progress 512
 //! ```
+//!
+//! `--progress ROWS` prints, every ROWS rows, the points so far, the rate and
+//! the current RSS, so a long run shows its memory staying flat.
 //!
 //! Peak RSS (`VmHWM`, Linux) covers the whole run; with `--scheme` and
 //! `--no-batch` a run measures one configuration only.
@@ -25,6 +28,7 @@ struct Args {
     seed: u64,
     schemes: Vec<Scheme>,
     batch: bool,
+    progress: Option<u32>,
 }
 
 fn parse() -> Result<Args, String> {
@@ -36,6 +40,7 @@ fn parse() -> Result<Args, String> {
         seed: 1,
         schemes: vec![Scheme::Sweep, Scheme::Paper],
         batch: true,
+        progress: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -59,6 +64,10 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--no-batch" => a.batch = false,
+            "--progress" => {
+                let rows: u32 = value()?.parse().map_err(|_| "bad --progress")?;
+                a.progress = Some(rows.max(1));
+            }
             other => return Err(format!("unknown flag {other}")),
         }
     }
@@ -172,8 +181,13 @@ impl Stats {
 }
 
 fn peak_rss_mib() -> Option<f64> {
+    status_mib("VmHWM:")
+}
+
+/// A memory figure of this process from `/proc/self/status`, in MiB.
+fn status_mib(field: &str) -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let line = status.lines().find(|l| l.starts_with(field))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib / 1024.0)
 }
@@ -208,6 +222,20 @@ fn main() -> ExitCode {
         let mut stream = tiled.pixels_seeded(args.seed);
         while let Some((x, y)) = stream.next_into(&mut buf) {
             stats.add(x, y, &buf);
+            if let Some(every) = args.progress
+                && x + 1 == args.width
+                && (y + 1) % every == 0
+            {
+                let s = start.elapsed().as_secs_f64();
+                #[expect(clippy::cast_precision_loss, reason = "statistics")]
+                let rate = stats.points as f64 / s / 1e6;
+                println!(
+                    "  rows {}: {} points, {s:.1} s, {rate:.3} M/s, RSS {:.1} MiB",
+                    y + 1,
+                    stats.points,
+                    status_mib("VmRSS:").unwrap_or(f64::NAN)
+                );
+            }
         }
         let seconds = start.elapsed().as_secs_f64();
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
