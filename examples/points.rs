@@ -55,6 +55,9 @@ Options:
   --pixels WxH             stream a W x H raster pixel by pixel (see above)
   --per-pixel N            with --pixels: about N points per pixel
   --paper                  with --pixels: Ye's per-pixel scheme
+  --exact N                with --pixels: exactly N points in every pixel
+                             (the JSON radius is then the oversampled
+                             sweep's, the minimum distance kept)
   -h, --help               print this help and exit
 
 Flags also accept the form --flag=value. Numbers are printed in the shortest
@@ -104,6 +107,8 @@ struct Raster {
     /// `--per-pixel`; `None` means `--radius` gives the spacing.
     per_pixel: Option<f64>,
     paper: bool,
+    /// `--exact N`: exactly N points in every pixel.
+    exact: Option<u32>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -187,6 +192,7 @@ where
     let mut pixels: Option<(u32, u32)> = None;
     let mut per_pixel: Option<f64> = None;
     let mut paper = false;
+    let mut exact: Option<u32> = None;
 
     let mut args = args.into_iter().map(Into::into);
     while let Some(raw) = args.next() {
@@ -225,6 +231,14 @@ where
                     format!("{flag} expects WxH with whole numbers, like 64x48, got '{v}'")
                 })?;
                 set(&mut pixels, size, &flag)?;
+            }
+            "--exact" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                set(
+                    &mut exact,
+                    parse_number(&flag, &v, "a whole number")?,
+                    &flag,
+                )?;
             }
             "--per-pixel" => {
                 let v = text_value(&flag, inline, &mut args)?;
@@ -324,10 +338,14 @@ where
         if let Some((flag, _)) = not_with_pixels.iter().find(|(_, given)| *given) {
             return Err(format!("{flag} does not apply with --pixels"));
         }
-        let radius = match (radius, per_pixel) {
-            (Some(_), Some(_)) => return Err("give --radius or --per-pixel, not both".to_owned()),
-            (None, None) => return Err("--pixels needs --radius or --per-pixel".to_owned()),
-            (r, _) => r.unwrap_or(f64::NAN),
+        let radius = match (radius, per_pixel, exact) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {
+                return Err("give one of --radius, --per-pixel and --exact".to_owned());
+            }
+            (None, None, None) => {
+                return Err("--pixels needs --radius, --per-pixel or --exact".to_owned());
+            }
+            (r, _, _) => r.unwrap_or(f64::NAN),
         };
         return Ok(Command::Run(Config {
             dim: 2,
@@ -346,6 +364,7 @@ where
                 height,
                 per_pixel,
                 paper,
+                exact,
             }),
         }));
     }
@@ -354,6 +373,9 @@ where
     }
     if paper {
         return Err("--paper needs --pixels".to_owned());
+    }
+    if exact.is_some() {
+        return Err("--exact needs --pixels".to_owned());
     }
     let dim = dim.ok_or("missing --dim")?;
     if !(1..=8).contains(&dim) {
@@ -629,9 +651,10 @@ fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
         } else {
             Scheme::Sweep
         });
-    let builder = match raster.per_pixel {
-        Some(n) => builder.per_pixel(n),
-        None => builder.radius(config.radius),
+    let builder = match (raster.exact, raster.per_pixel) {
+        (Some(n), _) => builder.exact(n),
+        (None, Some(n)) => builder.per_pixel(n),
+        (None, None) => builder.radius(config.radius),
     };
     let tiled = builder.build().map_err(|e| Failure::Usage(e.to_string()))?;
     let (w, h) = (f64::from(raster.width), f64::from(raster.height));
@@ -758,14 +781,19 @@ mod tests {
                 width: 64,
                 height: 48,
                 per_pixel: Some(4.0),
-                paper: true
+                paper: true,
+                exact: None,
             }),
             "raster settings"
         );
         assert_eq!((c.dim, c.seed), (2, 3), "dim and seed");
         let r = config("--pixels=5x7 --radius 0.8 --dim 2");
         assert_eq!(r.radius, 0.8, "radius");
-        assert_eq!(r.raster.map(|x| x.per_pixel), Some(None), "spacing from --radius");
+        assert_eq!(
+            r.raster.map(|x| x.per_pixel),
+            Some(None),
+            "spacing from --radius"
+        );
         for bad in [
             "--pixels 5x7",
             "--pixels 5x7 --radius 1 --per-pixel 2",
@@ -777,6 +805,9 @@ mod tests {
             "--pixels -5x7 --radius 1",
             "--dim 2 --radius 1 --per-pixel 4",
             "--dim 2 --radius 1 --paper",
+            "--dim 2 --radius 1 --exact 4",
+            "--pixels 5x7 --exact 4 --per-pixel 4",
+            "--pixels 5x7 --exact -1",
         ] {
             assert!(parse(bad).is_err(), "should be rejected: {bad}");
         }

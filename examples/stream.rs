@@ -29,6 +29,7 @@ struct Args {
     schemes: Vec<Scheme>,
     batch: bool,
     progress: Option<u32>,
+    exact: Option<u32>,
 }
 
 fn parse() -> Result<Args, String> {
@@ -41,6 +42,7 @@ fn parse() -> Result<Args, String> {
         schemes: vec![Scheme::Sweep, Scheme::Paper],
         batch: true,
         progress: None,
+        exact: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -64,6 +66,7 @@ fn parse() -> Result<Args, String> {
                 }
             }
             "--no-batch" => a.batch = false,
+            "--exact" => a.exact = Some(value()?.parse().map_err(|_| "bad --exact")?),
             "--progress" => {
                 let rows: u32 = value()?.parse().map_err(|_| "bad --progress")?;
                 a.progress = Some(rows.max(1));
@@ -88,10 +91,51 @@ struct Stats {
     pixel_frequency: [(f64, f64); 2],
     /// Points by tenth of a pixel along x and along y.
     profile: [[u64; 10]; 2],
+    /// Smallest squared distance between points in the same or adjacent
+    /// pixels (the set's minimum whenever that is below one pixel).
+    min_d2: f64,
+    previous_row: Vec<Vec<[f64; 2]>>,
+    current_row: Vec<Vec<[f64; 2]>>,
 }
 
 impl Stats {
+    fn new(width: u32) -> Self {
+        let w = width as usize;
+        Self {
+            min_d2: f64::INFINITY,
+            previous_row: vec![Vec::new(); w],
+            current_row: vec![Vec::new(); w],
+            ..Self::default()
+        }
+    }
+
+    /// Tracks the minimum distance against this pixel, its left neighbour
+    /// and the three pixels above.
+    fn track_distance(&mut self, x: u32, points: &[[f64; 2]]) {
+        let x = x as usize;
+        let d2 = |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
+        for (i, p) in points.iter().enumerate() {
+            for q in &points[..i] {
+                self.min_d2 = self.min_d2.min(d2(p, q));
+            }
+            let left = x.checked_sub(1).map(|l| &self.current_row[l]);
+            let above = (x.saturating_sub(1)..=(x + 1).min(self.previous_row.len() - 1))
+                .map(|k| &self.previous_row[k]);
+            for cell in left.into_iter().chain(above) {
+                for q in cell {
+                    self.min_d2 = self.min_d2.min(d2(p, q));
+                }
+            }
+        }
+        self.current_row[x].clear();
+        self.current_row[x].extend_from_slice(points);
+        if x + 1 == self.current_row.len() {
+            core::mem::swap(&mut self.previous_row, &mut self.current_row);
+        }
+    }
+
     fn add(&mut self, x: u32, y: u32, points: &[[f64; 2]]) {
+        self.track_distance(x, points);
         let n = points.len();
         if self.counts.len() <= n {
             self.counts.resize(n + 1, 0);
@@ -205,9 +249,10 @@ fn main() -> ExitCode {
     let mut stream_rate = None;
     for &scheme in &args.schemes {
         let builder = Tiled::builder(args.width, args.height).scheme(scheme);
-        let builder = match args.radius {
-            Some(r) => builder.radius(r),
-            None => builder.per_pixel(args.per_pixel),
+        let builder = match (args.exact, args.radius) {
+            (Some(n), _) => builder.exact(n),
+            (None, Some(r)) => builder.radius(r),
+            (None, None) => builder.per_pixel(args.per_pixel),
         };
         let tiled = match builder.build() {
             Ok(t) => t,
@@ -216,7 +261,7 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         };
-        let mut stats = Stats::default();
+        let mut stats = Stats::new(args.width);
         let mut buf = Vec::new();
         let start = Instant::now();
         let mut stream = tiled.pixels_seeded(args.seed);
@@ -240,10 +285,22 @@ fn main() -> ExitCode {
         let seconds = start.elapsed().as_secs_f64();
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let rate = stats.points as f64 / seconds;
-        let rho = usize::try_from(stats.points)
-            .ok()
-            .and_then(|n| relative_radius::<2>(tiled.radius(), n, area))
-            .unwrap_or(f64::NAN);
+        // ρ of the radius r (natural mode: the guaranteed minimum), and of
+        // the set's measured minimum distance (what exact mode offers).
+        let rho_of = |d: f64| {
+            usize::try_from(stats.points)
+                .ok()
+                .and_then(|n| relative_radius::<2>(d, n, area))
+                .unwrap_or(f64::NAN)
+        };
+        let rho = rho_of(tiled.radius());
+        println!(
+            "  rho of the measured minimum distance {:.4}",
+            rho_of(stats.min_d2.sqrt())
+        );
+        if args.exact.is_some() {
+            println!("  exact mode: {} top-up darts", stream.top_ups());
+        }
         println!(
             "{scheme:?}: {}x{} pixels, r = {:.5}, {} points in {seconds:.3} s ({:.3} M/s), rho {rho:.4}, window {:.1} MiB",
             args.width,

@@ -215,3 +215,48 @@ fn bad_settings_are_errors() {
         "huge window"
     );
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        ..ProptestConfig::default()
+    })]
+
+    /// Exact mode: exactly n points in every pixel, inside it; the union
+    /// keeps the oversampled radius wherever no top-up dart was needed.
+    #[test]
+    fn exact_mode_gives_exactly_n_per_pixel(
+        w in 1u32..=10,
+        h in 1u32..=10,
+        n in 1u32..=6,
+        scheme in scheme(),
+        seed in any::<u64>(),
+    ) {
+        let tiled = Tiled::builder(w, h).exact(n).scheme(scheme).build().unwrap();
+        let mut it = tiled.pixels_seeded(seed);
+        let mut union = Vec::new();
+        let mut buf = Vec::new();
+        while let Some((x, y)) = it.next_into(&mut buf) {
+            prop_assert_eq!(buf.len(), n as usize, "pixel {:?}, seed {}", (x, y), seed);
+            let lo = [f64::from(x), f64::from(y)];
+            let outside = common::out_of_bounds(&buf, lo, [lo[0] + 1.0, lo[1] + 1.0]);
+            prop_assert!(outside.is_empty(), "seed {seed}: {outside:?}");
+            union.extend_from_slice(&buf);
+        }
+        prop_assert_eq!(union.len(), (w * h * n) as usize, "total, seed {}", seed);
+        if it.top_ups() == 0 {
+            let raster = [f64::from(w), f64::from(h)];
+            let result = common::check_points(&union, tiled.radius(), [0.0; 2], raster, [false; 2]);
+            prop_assert!(result.is_ok(), "seed {seed}: {}", result.err().unwrap_or_default());
+        }
+    }
+}
+
+#[test]
+fn exact_zero_is_an_error() {
+    assert_eq!(
+        Tiled::builder(4, 4).exact(0).build().err(),
+        Some(Error::InvalidRadius),
+        "exact(0)"
+    );
+}

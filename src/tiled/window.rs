@@ -22,6 +22,9 @@ pub(crate) struct Slot {
     pub(crate) active: Vec<[f64; 2]>,
     /// Points ever stored in the pixel, emitted or not.
     pub(crate) count: usize,
+    /// Exact mode: the pixel's points as the sweep made them, before
+    /// elimination (kept after emission for the neighbours' weights).
+    pub(crate) oversampled: Vec<[f64; 2]>,
 }
 
 /// Geometry of the window, decided (and checked) up front.
@@ -157,6 +160,7 @@ impl Window {
             for slot in &mut self.slots[ring * self.plan.width..(ring + 1) * self.plan.width] {
                 slot.points.clear();
                 slot.active.clear();
+                slot.oversampled.clear();
                 slot.count = 0;
             }
             let c = self.plan.cells_per_pixel;
