@@ -104,8 +104,11 @@ impl Thinning {
                 around.extend(made.iter().map(|&p| (p, NEIGHBOUR_SHARE)));
             }
         }
-        let mut mine = core::mem::take(&mut window.slot_mut(x, y).points);
-        window.slot_mut(x, y).oversampled.clone_from(&mine);
+        let Some(slot) = window.slot_mut(x, y) else {
+            return 0;
+        };
+        let mut mine = core::mem::take(&mut slot.points);
+        slot.oversampled.clone_from(&mine);
         let reach2 = self.reach * self.reach;
         let weight = |d2: f64| {
             if d2 < reach2 {
@@ -157,7 +160,9 @@ impl Thinning {
             mine.push(best.1);
             top_ups += 1;
         }
-        window.slot_mut(x, y).points = mine;
+        if let Some(slot) = window.slot_mut(x, y) {
+            slot.points = mine;
+        }
         top_ups
     }
 }

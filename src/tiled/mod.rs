@@ -410,7 +410,9 @@ impl<R: Rng> Pixels<R> {
         }
         self.next += 1;
         points.clear();
-        core::mem::swap(points, &mut self.window.slot_mut(x, y).points);
+        if let Some(slot) = self.window.slot_mut(x, y) {
+            core::mem::swap(points, &mut slot.points);
+        }
         Some((u32::try_from(x).ok()?, u32::try_from(y).ok()?))
     }
 
@@ -479,8 +481,10 @@ impl<R: Rng> Pixels<R> {
             let Some(&parent) = self.window.slot(x, y).active.get(i) else {
                 return;
             };
-            if self.spawn(&parent, (x, y), true).is_none() {
-                self.window.slot_mut(x, y).active.swap_remove(i);
+            if self.spawn(&parent, (x, y), true).is_none()
+                && let Some(slot) = self.window.slot_mut(x, y)
+            {
+                slot.active.swap_remove(i);
             }
         }
     }

@@ -157,7 +157,9 @@ impl Window {
         let keep_from = row.saturating_sub(self.plan.rows_above);
         while self.top < keep_from {
             let ring = self.top % self.plan.ring_rows();
-            for slot in &mut self.slots[ring * self.plan.width..(ring + 1) * self.plan.width] {
+            let width = self.plan.width;
+            let row = self.slots.get_mut(ring * width..(ring + 1) * width);
+            for slot in row.into_iter().flatten() {
                 slot.points.clear();
                 slot.active.clear();
                 slot.oversampled.clear();
@@ -166,7 +168,9 @@ impl Window {
             let c = self.plan.cells_per_pixel;
             for j in self.top * c..(self.top + 1) * c {
                 let r = j % self.cell_rows;
-                self.cells[r * self.columns..(r + 1) * self.columns].fill(FAR);
+                if let Some(cells) = self.cells.get_mut(r * self.columns..(r + 1) * self.columns) {
+                    cells.fill(FAR);
+                }
             }
             self.top += 1;
         }
@@ -177,13 +181,30 @@ impl Window {
         y >= self.top && y < self.top + self.plan.ring_rows()
     }
 
+    /// The slot of pixel `(x, y)`, `x < width`; an empty one if `x` is
+    /// out of range (callers never ask for that).
     pub(crate) fn slot(&self, x: usize, y: usize) -> &Slot {
-        &self.slots[(y % self.plan.ring_rows()) * self.plan.width + x]
+        static NONE: Slot = Slot {
+            points: Vec::new(),
+            active: Vec::new(),
+            count: 0,
+            oversampled: Vec::new(),
+        };
+        self.slots.get(self.slot_index(x, y)).unwrap_or(&NONE)
     }
 
-    pub(crate) fn slot_mut(&mut self, x: usize, y: usize) -> &mut Slot {
-        let ring = self.plan.ring_rows();
-        &mut self.slots[(y % ring) * self.plan.width + x]
+    /// The slot of pixel `(x, y)`; `None` only if `x >= width`.
+    pub(crate) fn slot_mut(&mut self, x: usize, y: usize) -> Option<&mut Slot> {
+        let index = self.slot_index(x, y);
+        self.slots.get_mut(index)
+    }
+
+    fn slot_index(&self, x: usize, y: usize) -> usize {
+        if x < self.plan.width {
+            (y % self.plan.ring_rows()) * self.plan.width + x
+        } else {
+            usize::MAX
+        }
     }
 
     /// The global cell of a point inside the raster.
@@ -241,7 +262,9 @@ impl Window {
             Some(cell) if cell[0] == f64::INFINITY => *cell = p,
             _ => return false,
         }
-        let slot = self.slot_mut(pixel.0, pixel.1);
+        let Some(slot) = self.slot_mut(pixel.0, pixel.1) else {
+            return false;
+        };
         slot.points.push(p);
         slot.active.push(p);
         slot.count += 1;
