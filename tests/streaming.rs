@@ -16,12 +16,13 @@ fn stream(tiled: &Tiled, seed: u64) -> Vec<Pixel> {
 fn check_stream(tiled: &Tiled, seed: u64) -> Result<usize, String> {
     let (w, h) = (tiled.width(), tiled.height());
     let pixels = stream(tiled, seed);
-    if pixels.len() != (w as usize) * (h as usize) {
+    if pixels.len() as u64 != u64::from(w) * u64::from(h) {
         return Err(format!("{} pixels for {w}x{h}", pixels.len()));
     }
     let mut union = Vec::new();
     for (k, pixel) in pixels.iter().enumerate() {
-        let expected = (k as u32 % w, k as u32 / w);
+        let k = u32::try_from(k).expect("small rasters in tests");
+        let expected = (k % w, k / w);
         if (pixel.x, pixel.y) != expected {
             return Err(format!(
                 "pixel #{k} is {:?}, expected {expected:?}",

@@ -1,47 +1,49 @@
 //! Exact mode: exactly `n` points in every pixel, by weighted sample
 //! elimination (Yuksel 2015, "Sample Elimination for Generating Poisson Disk
-//! Sample Sets") applied pixel by pixel to an oversampled sweep.
+//! Sample Sets") applied to an oversampled sweep, a row at a time.
 //!
 //! The sweep runs at the radius that gives about [`OVERSAMPLE`]`·n` points
-//! per pixel. When a pixel is emitted, its points are thinned to `n` by
-//! removing, one at a time, the point with the largest weight
-//! `Σ (1 - d/2rₑ)⁸` over neighbours closer than `2rₑ`, where
+//! per pixel. When row `y` is complete, the points of rows `y` and `y + 1`
+//! are thinned *together*: the point with the largest weight
+//! `Σ (1 - d/2rₑ)⁸` over neighbours closer than `2rₑ` is removed, again and
+//! again, except from pixels already down to `n`, where
 //! `rₑ = sqrt(1 / (2√3·n))` is the spacing of `n` points per pixel on a
-//! hexagonal lattice. The neighbours are the pixel's own remaining points
-//! and the *oversampled* points of the pixels around it, on every side,
-//! counted at a share [`NEIGHBOUR_SHARE`]. Every pixel thus sees the same
-//! kind of surroundings, whichever side they are on. (Weighing the already thinned points of pixels emitted before
-//! against the oversampled points of pixels still to come — the natural
-//! streaming choice — left the left and top bands of every pixel 14–19 %
-//! denser and the right and bottom ones 32–37 % sparser: the weight is so
-//! steep that nearness to the denser side dominates any share.)
+//! hexagonal lattice. The neighbours are the band's remaining points and
+//! the final points of the rows above. Row `y` keeps its result; row
+//! `y + 1`'s is thrown away and done again with row `y` fixed. So every row
+//! is thinned with thinned rows on both sides and jointly along its length:
+//! no pixel border is favoured. (Two earlier versions thinned pixel by
+//! pixel. Weighing the thinned points of pixels emitted before against the
+//! oversampled points of pixels still to come left the left and top bands of
+//! a pixel 14–19 % denser and its right and bottom bands 32–37 % sparser;
+//! weighing the oversampled points on every side at a tuned share balanced
+//! 4 per pixel but not 1 or 8.)
+//!
+//! Measured with `examples/stream.rs --pixels 160x160 --exact N`, the
+//! density in 0.1-pixel bands along the pixel edges relative to the pixel
+//! interior is 0.95–1.01 for `n = 8`, 0.91–0.96 for `n = 4` and 0.72–0.74
+//! for `n = 1`. Part of this is inherent: the best-spread set with exactly
+//! one point per pixel draws its points toward the pixel centres, like a
+//! jittered lattice; exact counts and edge-blind density pull against each
+//! other as `n` gets small.
 //!
 //! Elimination only removes points, so the set keeps the minimum distance of
-//! the oversampled sweep (ρ ≈ 0.52 for the kept density: close pairs across
-//! pixel borders survive, since each pixel is thinned on its own). A pixel that received fewer than `n` points (rare
-//! at this oversampling) is topped up with best-candidate darts: of 32
-//! uniform darts in the pixel, the one farthest from every point near it.
-//! Those may come closer than the sweep's radius; [`Pixels::top_ups`]
-//! counts them.
+//! the oversampled sweep. A pixel left with fewer than `n` points (rare at
+//! this oversampling) is topped up with best-candidate darts: of 32 uniform
+//! darts in the pixel, the one farthest from every point near it. Those may
+//! come closer than the sweep's radius; [`Pixels::top_ups`] counts them.
 //!
 //! [`Pixels::top_ups`]: super::Pixels::top_ups
 
 use super::window::Window;
 use crate::random::unit;
 use crate::vector::distance_squared;
+use core::cmp::Ordering;
 use rand::Rng;
+use std::collections::BinaryHeap;
 
 /// Points per pixel the sweep makes, relative to the `n` kept.
 pub(crate) const OVERSAMPLE: f64 = 2.0;
-
-/// Weight of a neighbouring pixel's oversampled point relative to one of
-/// the pixel's own. Tuned, not derived: measured with `examples/stream.rs
-/// --exact 4 --pixels 160x160`, the edge-band/interior density ratios are
-/// 1.08–1.10 at 0.05, 0.99–1.01 at 0.1, 0.94–0.96 at 0.15, 0.85 at 0.3 and
-/// 0.77 at 0.5. At 0.1 they are 1.04–1.07 for 8 per pixel and 0.75–0.77 for
-/// 1 per pixel: the balance depends on `n`, which a better scheme should
-/// not.
-const NEIGHBOUR_SHARE: f64 = 0.1;
 
 /// Exponent of the elimination weight (Yuksel's α).
 const ALPHA: i32 = 8;
@@ -52,11 +54,32 @@ const DARTS: usize = 32;
 /// Elimination settings for `n` points per pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Thinning {
-    pub(crate) n: usize,
+    n: usize,
     /// `2rₑ`: the reach of the weight.
     reach: f64,
     /// Pixels searched on each side for neighbours.
     pixels: usize,
+}
+
+/// A heap entry: a point's weight when pushed (stale if it changed since).
+#[derive(Clone, Copy, Debug)]
+struct Entry(f64, usize);
+
+impl PartialEq for Entry {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0).then(other.1.cmp(&self.1))
+    }
 }
 
 impl Thinning {
@@ -73,74 +96,162 @@ impl Thinning {
         Self { n, reach, pixels }
     }
 
-    /// Thins (or tops up) the points of pixel `(x, y)` to exactly `n`, in
-    /// generation order, keeping the oversampled ones for the neighbours.
-    /// Returns the number of top-up darts placed.
-    pub(crate) fn apply<R: Rng + ?Sized>(
+    fn weight(&self, d2: f64) -> f64 {
+        if d2 < self.reach * self.reach {
+            (1.0 - d2.sqrt() / self.reach).powi(ALPHA)
+        } else {
+            0.0
+        }
+    }
+
+    /// Thins row `y` to exactly `n` points per pixel, jointly with row
+    /// `y + 1` (whose thinning is discarded), against the final points of
+    /// the rows above; stores the result as the row's points and final
+    /// points. Returns the number of top-up darts placed.
+    pub(crate) fn thin_row<R: Rng + ?Sized>(
         &self,
         window: &mut Window,
-        (x, y): (usize, usize),
+        y: usize,
         (width, height): (usize, usize),
         rng: &mut R,
     ) -> usize {
-        // Neighbours outside the pixel, with their weight factor.
-        let mut around: Vec<([f64; 2], f64)> = Vec::new();
-        let reach = isize::try_from(self.pixels).unwrap_or(1);
-        for dy in -reach..=reach {
-            for dx in -reach..=reach {
-                let (Some(qx), Some(qy)) = (x.checked_add_signed(dx), y.checked_add_signed(dy))
-                else {
-                    continue;
-                };
-                if (dx, dy) == (0, 0) || qx >= width || qy >= height || !window.holds_row(qy) {
-                    continue;
-                }
-                let slot = window.slot(qx, qy);
-                let made = if (qy, qx) < (y, x) {
-                    &slot.oversampled
-                } else {
-                    &slot.points
-                };
-                around.extend(made.iter().map(|&p| (p, NEIGHBOUR_SHARE)));
-            }
-        }
-        let Some(slot) = window.slot_mut(x, y) else {
-            return 0;
+        // The band: every point of rows y and y + 1, with its band pixel.
+        let band_rows = if y + 1 < height && window.holds_row(y + 1) {
+            2
+        } else {
+            1
         };
-        let mut mine = core::mem::take(&mut slot.points);
-        slot.oversampled.clone_from(&mine);
-        let reach2 = self.reach * self.reach;
-        let weight = |d2: f64| {
-            if d2 < reach2 {
-                (1.0 - d2.sqrt() / self.reach).powi(ALPHA)
-            } else {
-                0.0
-            }
-        };
-        while mine.len() > self.n {
-            // O(m²) per removal: m is about 2n, a handful of points.
-            let mut worst = (f64::NEG_INFINITY, 0);
-            for (i, p) in mine.iter().enumerate() {
-                let own: f64 = mine
-                    .iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != i)
-                    .map(|(_, q)| weight(distance_squared(p, q)))
-                    .sum();
-                let outside: f64 = around
-                    .iter()
-                    .map(|(q, share)| share * weight(distance_squared(p, q)))
-                    .sum();
-                let w = own + outside;
-                if w > worst.0 {
-                    worst = (w, i);
+        let mut points: Vec<[f64; 2]> = Vec::new();
+        let mut pixel_of: Vec<usize> = Vec::new();
+        let mut members: Vec<Vec<usize>> = vec![Vec::new(); band_rows * width];
+        for row in 0..band_rows {
+            for x in 0..width {
+                let b = row * width + x;
+                for &p in &window.slot(x, y + row).points {
+                    if let Some(list) = members.get_mut(b) {
+                        list.push(points.len());
+                    }
+                    points.push(p);
+                    pixel_of.push(b);
                 }
             }
-            mine.remove(worst.1);
         }
+        // Final points of the rows above row y within reach of the band
+        // pixel at row offset `row`, column `x`.
+        let window_ref: &Window = window;
+        let above = |row: usize, x: usize| {
+            ((y + row).saturating_sub(self.pixels)..y)
+                .filter(|&yy| window_ref.holds_row(yy))
+                .flat_map(move |yy| {
+                    (x.saturating_sub(self.pixels)..=(x + self.pixels).min(width - 1))
+                        .flat_map(move |xx| window_ref.slot(xx, yy).kept.iter())
+                })
+        };
+        // Band pixels within reach of band pixel b.
+        let reach = self.pixels;
+        let near = |b: usize| {
+            let (row, x) = (b / width, b % width);
+            (row.saturating_sub(reach)..=(row + reach).min(band_rows - 1)).flat_map(move |r| {
+                (x.saturating_sub(reach)..=(x + reach).min(width - 1)).map(move |xx| r * width + xx)
+            })
+        };
+        let mut weight = vec![0.0; points.len()];
+        for (i, p) in points.iter().enumerate() {
+            let b = pixel_of.get(i).copied().unwrap_or(0);
+            let mut w = 0.0;
+            for nb in near(b) {
+                for &j in members.get(nb).into_iter().flatten() {
+                    if j != i
+                        && let Some(q) = points.get(j)
+                    {
+                        w += self.weight(distance_squared(p, q));
+                    }
+                }
+            }
+            w += above(b / width, b % width)
+                .map(|q| self.weight(distance_squared(p, q)))
+                .sum::<f64>();
+            if let Some(slot) = weight.get_mut(i) {
+                *slot = w;
+            }
+        }
+        let mut count: Vec<usize> = members.iter().map(Vec::len).collect();
+        let mut alive = vec![true; points.len()];
+        let mut heap: BinaryHeap<Entry> = weight
+            .iter()
+            .enumerate()
+            .map(|(i, &w)| Entry(w, i))
+            .collect();
+        while let Some(Entry(w, i)) = heap.pop() {
+            let (Some(&is_alive), Some(&current), Some(&b)) =
+                (alive.get(i), weight.get(i), pixel_of.get(i))
+            else {
+                continue;
+            };
+            if !is_alive || w != current || count.get(b).is_none_or(|&c| c <= self.n) {
+                continue;
+            }
+            if let (Some(a), Some(c)) = (alive.get_mut(i), count.get_mut(b)) {
+                *a = false;
+                *c -= 1;
+            }
+            let Some(&p) = points.get(i) else { continue };
+            for nb in near(b) {
+                for &j in members.get(nb).into_iter().flatten() {
+                    if alive.get(j) == Some(&true)
+                        && let (Some(q), Some(wj)) = (points.get(j), weight.get_mut(j))
+                    {
+                        let dw = self.weight(distance_squared(&p, q));
+                        if dw > 0.0 {
+                            *wj -= dw;
+                            heap.push(Entry(*wj, j));
+                        }
+                    }
+                }
+            }
+        }
+        // Row y's survivors, in generation order, topped up if short.
         let mut top_ups = 0;
+        let mut results: Vec<Vec<[f64; 2]>> = Vec::with_capacity(width);
+        for x in 0..width {
+            let mut mine: Vec<[f64; 2]> = members
+                .get(x)
+                .into_iter()
+                .flatten()
+                .filter(|&&i| alive.get(i) == Some(&true))
+                .filter_map(|&i| points.get(i).copied())
+                .collect();
+            if mine.len() < self.n {
+                let others: Vec<[f64; 2]> = near(x)
+                    .flat_map(|nb| members.get(nb).into_iter().flatten())
+                    .filter(|&&i| alive.get(i) == Some(&true))
+                    .filter_map(|&i| points.get(i).copied())
+                    .chain(above(0, x).copied())
+                    .collect();
+                top_ups += self.top_up(&mut mine, &others, (x, y), rng);
+            }
+            results.push(mine);
+        }
+        for (x, mine) in results.into_iter().enumerate() {
+            if let Some(slot) = window.slot_mut(x, y) {
+                slot.kept.clone_from(&mine);
+                slot.points = mine;
+            }
+        }
+        top_ups
+    }
+
+    /// Adds best-candidate darts to pixel `(x, y)` until it holds `n`.
+    fn top_up<R: Rng + ?Sized>(
+        &self,
+        mine: &mut Vec<[f64; 2]>,
+        others: &[[f64; 2]],
+        (x, y): (usize, usize),
+        rng: &mut R,
+    ) -> usize {
         #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
         let (fx, fy) = (x as f64, y as f64);
+        let mut placed = 0;
         while mine.len() < self.n {
             let mut best = (f64::NEG_INFINITY, [fx, fy]);
             for _ in 0..DARTS {
@@ -150,7 +261,7 @@ impl Thinning {
                 }
                 let nearest = mine
                     .iter()
-                    .chain(around.iter().map(|(q, _)| q))
+                    .chain(others)
                     .map(|q| distance_squared(&dart, q))
                     .fold(f64::INFINITY, f64::min);
                 if nearest > best.0 {
@@ -158,11 +269,8 @@ impl Thinning {
                 }
             }
             mine.push(best.1);
-            top_ups += 1;
+            placed += 1;
         }
-        if let Some(slot) = window.slot_mut(x, y) {
-            slot.points = mine;
-        }
-        top_ups
+        placed
     }
 }

@@ -122,10 +122,8 @@ impl TiledBuilder {
     /// minimum distance is then that of the oversampled set,
     /// [`Tiled::radius`], except around top-ups.
     ///
-    /// A first version: at 4 per pixel the density in 0.1-pixel bands along
-    /// the pixel edges is within 1.3 % of the interior, but at 8 per pixel
-    /// the edges are 4–7 % denser and at 1 per pixel 23–25 % sparser
-    /// (`examples/stream.rs --exact N`).
+    /// Exact mode always uses [`Scheme::Sweep`]: it thins whole rows
+    /// jointly (see the `exact` module docs in the source).
     #[must_use]
     pub fn exact(mut self, n: u32) -> Self {
         self.exact = Some(n);
@@ -394,19 +392,18 @@ impl<R: Rng> Pixels<R> {
         if x == 0 {
             self.window.advance_to_row(y);
         }
-        match self.scheme {
-            Scheme::Paper => self.finish_alone(x, y),
-            _ if x == 0 => self.finish_row(y),
+        match (self.scheme, self.thinning) {
+            // Exact mode always sweeps: it thins whole rows.
+            (Scheme::Paper, None) => self.finish_alone(x, y),
+            (_, thinning) if x == 0 => {
+                self.finish_row(y);
+                if let Some(thinning) = thinning {
+                    let dims = (self.width, self.height);
+                    let placed = thinning.thin_row(&mut self.window, y, dims, &mut self.rng);
+                    self.top_ups += placed as u64;
+                }
+            }
             _ => {}
-        }
-        if let Some(thinning) = self.thinning {
-            let placed = thinning.apply(
-                &mut self.window,
-                (x, y),
-                (self.width, self.height),
-                &mut self.rng,
-            );
-            self.top_ups += placed as u64;
         }
         self.next += 1;
         points.clear();

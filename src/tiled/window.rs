@@ -22,9 +22,9 @@ pub(crate) struct Slot {
     pub(crate) active: Vec<[f64; 2]>,
     /// Points ever stored in the pixel, emitted or not.
     pub(crate) count: usize,
-    /// Exact mode: the pixel's points as the sweep made them, before
-    /// elimination (kept after emission for the neighbours' weights).
-    pub(crate) oversampled: Vec<[f64; 2]>,
+    /// Exact mode: the pixel's final points, kept after emission for the
+    /// next rows' elimination weights.
+    pub(crate) kept: Vec<[f64; 2]>,
 }
 
 /// Geometry of the window, decided (and checked) up front.
@@ -162,7 +162,7 @@ impl Window {
             for slot in row.into_iter().flatten() {
                 slot.points.clear();
                 slot.active.clear();
-                slot.oversampled.clear();
+                slot.kept.clear();
                 slot.count = 0;
             }
             let c = self.plan.cells_per_pixel;
@@ -188,7 +188,7 @@ impl Window {
             points: Vec::new(),
             active: Vec::new(),
             count: 0,
-            oversampled: Vec::new(),
+            kept: Vec::new(),
         };
         self.slots.get(self.slot_index(x, y)).unwrap_or(&NONE)
     }
