@@ -41,7 +41,10 @@ use rand::Rng;
 use std::collections::BinaryHeap;
 use window::{Window, WindowPlan};
 
-/// How the streaming mode builds each pixel (see the [module docs](self)).
+/// How the streaming mode builds each pixel.
+///
+/// See [`Tiled`] for the streaming API; `ARCHITECTURE.md` explains why the
+/// sweep has no border bias.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Scheme {

@@ -82,7 +82,10 @@ impl WindowPlan {
         // Rounding margin on the cell index, as for the batch grid.
         #[expect(clippy::cast_precision_loss, reason = "a bound, not a count")]
         let eta = rounding_margin(width.max(height) as f64 * c);
-        let reach = whole(radius / side + eta)?;
+        // Beyond the raster there is nothing to find: the reach never needs
+        // to exceed it, which also bounds the stencil for huge radii.
+        let raster_cells = width.max(height).checked_mul(cells_per_pixel)?;
+        let reach = whole(radius / side + eta)?.min(raster_cells);
         let columns = width.checked_mul(cells_per_pixel)?.checked_add(2 * reach)?;
         let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
         let cell_rows = ring_rows.checked_mul(cells_per_pixel)?;
@@ -91,7 +94,23 @@ impl WindowPlan {
         let slot_bytes = width
             .checked_mul(ring_rows)?
             .checked_mul(size_of::<Slot>())?;
-        let bytes = u64::try_from(grid_bytes.checked_add(slot_bytes)?).ok()?;
+        // The cell stencil and the table of nearby pixels (both squares of
+        // their reach) are allocated too; a huge radius on a wide raster
+        // must be an error, not an abort.
+        let side_cells = reach.checked_mul(2)?.checked_add(1)?;
+        let stencil_bytes = side_cells
+            .checked_mul(side_cells)?
+            .checked_mul(size_of::<(f64, usize, isize, isize)>())?;
+        let near = whole(2.0 * radius)?.min(width.max(height));
+        let near_side = near.checked_mul(2)?.checked_add(1)?;
+        let near_bytes = near_side
+            .checked_mul(near_side)?
+            .checked_mul(size_of::<(isize, isize)>())?;
+        let bytes = grid_bytes
+            .checked_add(slot_bytes)?
+            .checked_add(stencil_bytes)?
+            .checked_add(near_bytes)?;
+        let bytes = u64::try_from(bytes).ok()?;
         Some(Self {
             width,
             height,
