@@ -1128,13 +1128,19 @@ mod tests {
         assert_eq!(c.stream, Some(Stream::Paper), "paper");
         let c = config("--pixels 4x4 --exact 3 --report -");
         assert_eq!(c.stream, Some(Stream::Exact(3)), "exact");
-        assert!(error("--radius 0.3 --stream sweep --report -").contains("--pixels"), "no raster");
+        assert!(
+            error("--radius 0.3 --stream sweep --report -").contains("--pixels"),
+            "no raster"
+        );
         assert!(
             error("--pixels 4x4 --radius 0.3 --stream sweep --periodic --report -")
                 .contains("periodic"),
             "periodic"
         );
-        assert!(error("--pixels 4x4 --stream zigzag --report -").contains("sweep"), "scheme");
+        assert!(
+            error("--pixels 4x4 --stream zigzag --report -").contains("sweep"),
+            "scheme"
+        );
     }
 
     /// A fresh, empty directory under the system's temporary directory.
