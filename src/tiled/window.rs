@@ -98,9 +98,10 @@ impl WindowPlan {
         // their reach) are allocated too; a huge radius on a wide raster
         // must be an error, not an abort.
         let side_cells = reach.checked_mul(2)?.checked_add(1)?;
-        let stencil_bytes = side_cells
-            .checked_mul(side_cells)?
-            .checked_mul(size_of::<(f64, usize, isize, isize)>())?;
+        let stencil_bytes =
+            side_cells
+                .checked_mul(side_cells)?
+                .checked_mul(size_of::<(f64, usize, isize, isize)>())?;
         let near = whole(2.0 * radius)?.min(width.max(height));
         let near_side = near.checked_mul(2)?.checked_add(1)?;
         let near_bytes = near_side
