@@ -81,8 +81,9 @@ impl<const N: usize> CandidateSampler<N> {
                 let (dx, dy) = angle_direction(low);
                 let rho = self.radius * (1.0 + 3.0 * u).sqrt();
                 let mut d = [0.0; N];
-                d[0] = rho * dx;
-                d[1] = rho * dy;
+                if let [x, y] = d.as_mut_slice() {
+                    (*x, *y) = (rho * dx, rho * dy);
+                }
                 d
             }
             Candidates::Annulus => loop {
@@ -97,11 +98,13 @@ impl<const N: usize> CandidateSampler<N> {
             },
             Candidates::Sphere => {
                 let distance = self.radius * (1.0 + SPHERE_SLACK);
-                if N == 2 {
+                let here = *state;
+                // Matches exactly when N == 2: the next of k evenly spaced
+                // directions.
+                if let [x, y] = state.as_mut_slice() {
                     let (c, s) = self.step;
-                    let here = *state;
-                    state[0] = c * here[0] - s * here[1];
-                    state[1] = s * here[0] + c * here[1];
+                    let (hx, hy) = (*x, *y);
+                    (*x, *y) = (c * hx - s * hy, s * hx + c * hy);
                     scale(&here, distance)
                 } else {
                     scale(&unit_direction::<N, R>(rng), distance)
@@ -116,13 +119,13 @@ impl<const N: usize> CandidateSampler<N> {
 #[inline(always)]
 fn cube_point<const N: usize, R: Rng + ?Sized>(rng: &mut R, half: f64) -> [f64; N] {
     let mut d = [0.0; N];
-    let mut pairs = d.chunks_exact_mut(2);
-    for pair in &mut pairs {
+    let (pairs, rest) = d.as_chunks_mut::<2>();
+    for [x, y] in pairs {
         let (a, b) = symmetric_pair(rng);
-        pair[0] = a * half;
-        pair[1] = b * half;
+        *x = a * half;
+        *y = b * half;
     }
-    for last in pairs.into_remainder() {
+    for last in rest {
         *last = symmetric(rng) * half;
     }
     d
@@ -163,6 +166,10 @@ fn angle_direction(bits: u32) -> (f64, f64) {
     const QUARTER_PER_UNIT: f64 = core::f64::consts::FRAC_PI_2 / (1u32 << 30) as f64;
     let t = f64::from(bits & ((1 << 30) - 1)) * QUARTER_PER_UNIT;
     let (c, s) = quarter_cos_sin(t);
+    #[expect(
+        clippy::indexing_slicing,
+        reason = "bits >> 30 < 4 for a u32, and QUADRANTS has 4 rows"
+    )]
     let m = QUADRANTS[(bits >> 30) as usize];
     (m[0] * c + m[1] * s, m[2] * c + m[3] * s)
 }

@@ -6,7 +6,7 @@ use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
 use crate::random::{DefaultRng, below, seeded_rng, unit};
-use crate::vector::{add, all_finite};
+use crate::vector::{add, all_finite, zip_map};
 use core::iter::FusedIterator;
 use rand::Rng;
 
@@ -430,7 +430,8 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
 fn first_point<const N: usize, R: Rng + ?Sized>(domain: &Domain<N>, rng: &mut R) -> [f64; N] {
     let (lo, extent) = (domain.lo(), domain.extent());
     for _ in 0..64 {
-        let p: [f64; N] = core::array::from_fn(|i| lo[i] + unit(rng) * extent[i]);
+        // Axis order, one draw each: part of the value-stable stream.
+        let p = zip_map(&lo, &extent, |l, e| l + unit(rng) * e);
         if all_finite(&p) && domain.contains(&p) {
             return p;
         }

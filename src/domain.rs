@@ -2,6 +2,7 @@
 //! periodic.
 
 use crate::error::Error;
+use crate::vector::zip_map;
 
 /// An axis-aligned box `lo <= x < hi`, each axis optionally periodic.
 ///
@@ -41,8 +42,7 @@ impl<const N: usize> Domain<N> {
         if N == 0 {
             return Err(Error::ZeroDimension);
         }
-        for axis in 0..N {
-            let (l, h) = (lo[axis], hi[axis]);
+        for (axis, (&l, &h)) in lo.iter().zip(&hi).enumerate() {
             if !l.is_finite() || !h.is_finite() {
                 return Err(Error::NonFiniteBound { axis });
             }
@@ -97,17 +97,13 @@ impl<const N: usize> Domain<N> {
 
     /// `hi - lo` on every axis (finite and positive by construction).
     pub fn extent(&self) -> [f64; N] {
-        core::array::from_fn(|i| self.hi[i] - self.lo[i])
+        zip_map(&self.hi, &self.lo, |h, l| h - l)
     }
 
     /// The period of each axis: its extent if periodic, `0.0` if bounded.
     pub(crate) fn periods(&self) -> [f64; N] {
-        core::array::from_fn(|i| {
-            if self.periodic[i] {
-                self.hi[i] - self.lo[i]
-            } else {
-                0.0
-            }
+        zip_map(&self.extent(), &self.periodic, |l, periodic| {
+            if periodic { l } else { 0.0 }
         })
     }
 
@@ -119,7 +115,9 @@ impl<const N: usize> Domain<N> {
 
     /// Whether `lo <= p < hi` on every axis.
     pub fn contains(&self, p: &[f64; N]) -> bool {
-        (0..N).all(|i| self.lo[i] <= p[i] && p[i] < self.hi[i])
+        p.iter()
+            .zip(self.lo.iter().zip(&self.hi))
+            .all(|(x, (lo, hi))| lo <= x && x < hi)
     }
 
     /// Maps a coordinate that left the box on a periodic axis back into it,

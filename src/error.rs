@@ -47,7 +47,9 @@ pub enum Error {
     /// Raise the budget, cap the number of points, or grow the radius.
     GridTooLarge {
         /// The smallest number of bytes either layout would need, saturated
-        /// at `u64::MAX`.
+        /// at `u64::MAX`; always more than `budget`, or `u64::MAX`. `u64::MAX`
+        /// also stands for a grid that no budget makes possible, such as a
+        /// dense grid that would hold 2³² points or more.
         needed: u64,
         /// The budget in force.
         budget: u64,

@@ -44,6 +44,32 @@
 //! 4. The set is maximal to `k` attempts: the stream ends only when every
 //!    point has failed `k` candidate throws around it.
 //!
+//! # Limits
+//! What each awkward input gives. Errors come from [`Domain::new`] (box) or
+//! [`Builder::build`] (everything else), checked in this order: dimension,
+//! box, radius, attempts, grid. Each row is a test in
+//! `tests/invalid_input.rs`; the fuzz targets in `fuzz/` check the rest.
+//!
+//! | Input | Outcome |
+//! |---|---|
+//! | `N = 0` | [`Error::ZeroDimension`] |
+//! | `N = 1` | works like any other `N` |
+//! | a bound NaN, `+∞` or `-∞` | [`Error::NonFiniteBound`] naming the first bad axis |
+//! | `lo == hi` (also `0.0 .. -0.0`) or `lo > hi` | [`Error::EmptyBox`] |
+//! | `hi - lo` overflows, e.g. `-1e308 .. 1e308` | [`Error::ExtentOverflow`] |
+//! | negative, subnormal or far-from-zero bounds | ordinary values: valid points |
+//! | radius NaN, `±∞`, `<= 0`, subnormal, outside `1e-150 ..= 1e150` | [`Error::InvalidRadius`] |
+//! | box thinner than `r` on some axis (bounded or periodic) | valid points: a row, or a single point |
+//! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
+//! | `r` tiny against the box (within 2⁴⁰ radii) | [`Error::GridTooLarge`] `{ needed, budget }` (`needed` saturated at `u64::MAX`), unless a point cap or a larger budget makes a grid fit |
+//! | [`Builder::max_grid_bytes`] | checked in `build()`, before anything is allocated; `0` refuses every grid. The budget bounds the planned grid ([`PoissonDisk::grid_bytes`]); the active list and hash-map growth come on top (peak heap measured at up to 1.2× `grid_bytes`). With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
+//! | `k = 0` | [`Error::ZeroAttempts`] |
+//! | huge `k`, up to `u32::MAX` | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. `k = u32::MAX` costs minutes per point, hours per run. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
+//! | point cap `Some(0)` | an empty stream |
+//! | point cap `Some(c)` | the first `c` points of the uncapped stream; also bounds the sparse grid's memory |
+//! | point cap `Some(u64::MAX)` | the same as `None` |
+//! | any point, any input | `lo <= x < hi`: a candidate that rounds onto `hi` is dropped, never clamped |
+//!
 //! # Determinism
 //! A `u64` seed ([`PoissonDisk::iter_seeded`]) gives the same points, in the
 //! same order, on every run and platform: the sampler uses only integer
@@ -69,6 +95,28 @@
 //! points. `README.md` has measured throughput against a textbook
 //! implementation.
 #![doc(test(attr(deny(warnings))))]
+// No panics on user input: library code neither unwraps nor indexes
+// unchecked; where an index is provably in range and a rewrite would cost
+// the hot loop, an `#[expect]` on the narrowest item states the proof.
+#![warn(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::unreachable,
+    clippy::todo,
+    clippy::unimplemented
+)]
+#![cfg_attr(
+    test,
+    allow(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::indexing_slicing,
+        clippy::panic,
+        reason = "unit tests may panic: that is how they fail"
+    )
+)]
 
 mod annulus;
 mod bridson;

@@ -8,8 +8,8 @@
 #[inline(always)]
 pub(crate) fn distance_squared<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
     let mut acc = 0.0;
-    for i in 0..N {
-        let d = a[i] - b[i];
+    for (x, y) in a.iter().zip(b) {
+        let d = x - y;
         acc += d * d;
     }
     acc
@@ -25,10 +25,10 @@ pub(crate) fn periodic_distance_squared<const N: usize>(
     period: &[f64; N],
 ) -> f64 {
     let mut acc = 0.0;
-    for i in 0..N {
-        let mut d = (a[i] - b[i]).abs();
-        if period[i] > 0.0 {
-            d = d.min(period[i] - d);
+    for ((x, y), &l) in a.iter().zip(b).zip(period) {
+        let mut d = (x - y).abs();
+        if l > 0.0 {
+            d = d.min(l - d);
         }
         acc += d * d;
     }
@@ -43,7 +43,23 @@ pub(crate) fn all_finite<const N: usize>(a: &[f64; N]) -> bool {
 /// Component-wise `a + b`.
 #[inline(always)]
 pub(crate) fn add<const N: usize>(a: &[f64; N], b: &[f64; N]) -> [f64; N] {
-    core::array::from_fn(|i| a[i] + b[i])
+    zip_map(a, b, |x, y| x + y)
+}
+
+/// `[f(a[0], b[0]), f(a[1], b[1]), …]`: the one place where per-axis
+/// arrays are indexed, so that callers need not.
+#[inline(always)]
+pub(crate) fn zip_map<A: Copy, B: Copy, T, const N: usize>(
+    a: &[A; N],
+    b: &[B; N],
+    mut f: impl FnMut(A, B) -> T,
+) -> [T; N] {
+    #[expect(
+        clippy::indexing_slicing,
+        reason = "from_fn calls the closure with i < N only, and both arrays have length N"
+    )]
+    let out = core::array::from_fn(|i| f(a[i], b[i]));
+    out
 }
 
 /// `‖a‖²`.

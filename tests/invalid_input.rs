@@ -252,6 +252,20 @@ fn radius_at_the_documented_limits_is_accepted() {
     );
 }
 
+#[test]
+fn radius_one_ulp_outside_the_limits() {
+    assert_eq!(
+        radius_error(1e-150_f64.next_down()),
+        Err(Error::InvalidRadius),
+        "one ulp below 1e-150"
+    );
+    assert_eq!(
+        radius_error(1e150_f64.next_up()),
+        Err(Error::InvalidRadius),
+        "one ulp above 1e150"
+    );
+}
+
 // ---------------------------------------------------------------- attempts
 
 #[test]
@@ -263,6 +277,98 @@ fn zero_attempts() {
         "k = 0"
     );
     assert!(builder.attempts(1).build().is_ok(), "k = 1 is fine");
+}
+
+/// Counts the generator calls the sampler makes.
+struct CountingRng {
+    inner: bridson::DefaultRng,
+    draws: u64,
+}
+
+impl CountingRng {
+    fn new(seed: u64) -> Self {
+        Self {
+            inner: bridson::seeded_rng(seed),
+            draws: 0,
+        }
+    }
+}
+
+impl rand::TryRng for CountingRng {
+    type Error = core::convert::Infallible;
+
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        self.draws += 1;
+        self.inner.try_next_u32()
+    }
+
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        self.draws += 1;
+        self.inner.try_next_u64()
+    }
+
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        self.draws += 1;
+        self.inner.try_fill_bytes(dst)
+    }
+}
+
+/// `k` is any `u32 >= 1`, and a point retires after exactly `k` failed
+/// candidates: in a periodic cell shorter than `r` (room for one point)
+/// the 2-D annulus makes 2 draws for the first point, 1 to pick it and 1
+/// per candidate, so the stream ends after exactly `k + 3` draws.
+#[test]
+fn large_attempts_cost_exactly_k_candidates_per_retired_point() {
+    let cell = Domain::from_extent([0.03, 0.05])
+        .expect("box")
+        .with_periodic([true, true]);
+    for k in [1, 30, 1 << 16] {
+        for layout in LAYOUTS {
+            let s = PoissonDisk2::builder(cell, 0.1)
+                .attempts(k)
+                .layout(layout)
+                .build()
+                .expect("any k >= 1 is valid");
+            let mut rng = CountingRng::new(4);
+            let n = s.iter(&mut rng).count();
+            assert_eq!(n, 1, "k = {k}, {layout:?}: one point fits");
+            assert_eq!(
+                rng.draws,
+                u64::from(k) + 3,
+                "k = {k}, {layout:?}: draws until the stream ends"
+            );
+        }
+    }
+}
+
+/// `k = u32::MAX` is accepted, and the stream is lazy: with annulus
+/// candidates the first points come at once. A full run is another matter:
+/// every point retires only after `k` failed throws, and points start
+/// retiring as soon as the first ones are surrounded, so a run costs about
+/// `n·k` throws whatever the cap (hours for `u32::MAX`). 2-D
+/// `Candidates::Sphere` is slow even sooner: its `k` directions are `2π/k`
+/// apart, so a parent blocked on one side spends up to about `k` attempts
+/// turning past its neighbour (not run here; see the `# Limits` table in the
+/// crate docs).
+#[test]
+fn huge_attempts_are_accepted_and_the_stream_is_lazy() {
+    let roomy = Domain::from_extent([1000.0, 1000.0]).expect("box");
+    let s = PoissonDisk2::builder(roomy, 1.0)
+        .attempts(u32::MAX)
+        .build()
+        .expect("k = u32::MAX is valid");
+    let mut rng = CountingRng::new(5);
+    let points: Vec<[f64; 2]> = s.iter(&mut rng).take(4).collect();
+    assert_eq!(points.len(), 4, "four points");
+    assert!(
+        rng.draws < 1000,
+        "{} draws for the first four points",
+        rng.draws
+    );
+    let d = s.domain();
+    if let Err(report) = common::check_points(&points, 1.0, d.lo(), d.hi(), d.periodic()) {
+        panic!("{report}");
+    }
 }
 
 // ---------------------------------------------------------------- grid size
@@ -308,6 +414,73 @@ fn a_point_cap_makes_the_huge_box_feasible() {
             Err(Error::GridTooLarge { .. })
         ),
         "no cap: too large"
+    );
+}
+
+/// The memory budget is checked by `build()`, before anything is
+/// allocated: a budget of 0 refuses every layout, an astronomical grid is
+/// refused with `needed` saturated at `u64::MAX`, and an accepted sampler's
+/// planned grid never exceeds its budget.
+#[test]
+fn the_budget_is_checked_by_build() {
+    for layout in LAYOUTS {
+        match PoissonDisk2::builder(unit_square(), 0.1)
+            .layout(layout)
+            .max_grid_bytes(0)
+            .build()
+        {
+            Err(Error::GridTooLarge { needed, budget }) => {
+                assert_eq!(budget, 0, "{layout:?}: the budget in force");
+                assert!(needed > 0, "{layout:?}: needed {needed}");
+            }
+            other => panic!("{layout:?}: expected GridTooLarge, got {other:?}"),
+        }
+    }
+    assert_eq!(
+        PoissonDisk2::new(huge_box(), 1e-3),
+        Err(Error::GridTooLarge {
+            needed: u64::MAX,
+            budget: DEFAULT_MAX_GRID_BYTES
+        }),
+        "a 1e18-cell dense grid and an uncapped sparse one"
+    );
+    for budget in [1 << 12, 1 << 16, 1 << 20, 1 << 24, DEFAULT_MAX_GRID_BYTES] {
+        for layout in LAYOUTS {
+            for cap in [None, Some(100)] {
+                let built = PoissonDisk2::builder(unit_square(), 0.002)
+                    .layout(layout)
+                    .max_grid_bytes(budget)
+                    .max_points(cap)
+                    .build();
+                if let Ok(s) = built {
+                    assert!(
+                        s.grid_bytes() <= budget,
+                        "{layout:?}, cap {cap:?}: planned {} > budget {budget}",
+                        s.grid_bytes()
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// `Some(u64::MAX)` is the same as no cap, and `size_hint` reports a cap.
+#[test]
+fn a_cap_of_u64_max_is_no_cap() {
+    let builder = PoissonDisk2::builder(unit_square(), 0.05);
+    let uncapped = builder.build().expect("valid");
+    let capped = builder.max_points(Some(u64::MAX)).build().expect("valid");
+    assert_eq!(
+        capped.generate_seeded(8),
+        uncapped.generate_seeded(8),
+        "same points"
+    );
+    let seven = builder.max_points(Some(7)).build().expect("valid");
+    assert_eq!(seven.iter_seeded(8).size_hint(), (0, Some(7)), "size_hint");
+    assert_eq!(
+        seven.generate_seeded(8),
+        uncapped.generate_seeded(8)[..7],
+        "a cap is a prefix of the uncapped stream"
     );
 }
 
@@ -397,6 +570,55 @@ fn forced_dense_over_budget_is_grid_too_large() {
         }),
         "forced Dense over budget"
     );
+}
+
+/// Found by the `batch` fuzz target: a forced dense grid that could hold
+/// 2³² points or more (its `u32` indices run out) was refused with the
+/// grid's byte count as `needed`, which could be within the budget
+/// ("needs 36241146383744 bytes, over the budget of 9007199254740992").
+/// No budget makes such a grid possible, so `needed` is `u64::MAX`.
+#[test]
+fn a_dense_grid_past_u32_indices_is_refused_whatever_the_budget() {
+    // About 1.3e10 points fit in the unit square at r = 1e-5.
+    let dense = PoissonDisk2::builder(unit_square(), 1e-5).layout(GridLayout::Dense);
+    for budget in [1 << 40, 1 << 53, u64::MAX] {
+        assert_eq!(
+            dense.max_grid_bytes(budget).build(),
+            Err(Error::GridTooLarge {
+                needed: u64::MAX,
+                budget
+            }),
+            "budget {budget}"
+        );
+    }
+    // The same in 8-D, as the fuzzer found it.
+    let mut lo = [469.828_125; 8];
+    let mut hi = [475.358_209_135_837_06; 8];
+    lo[0] = 117.0;
+    hi[0] = 127.999_916_076_660_16;
+    let domain = Domain::new(lo, hi)
+        .expect("valid box")
+        .with_periodic([true, false, true, false, true, true, true, false]);
+    let budget = 1 << 53;
+    let err = PoissonDisk::builder(domain, f64::from_bits(0x3fdf_fff0_0000_0000))
+        .layout(GridLayout::Dense)
+        .max_grid_bytes(budget)
+        .build()
+        .expect_err("too many points for u32 indices");
+    assert_eq!(
+        err,
+        Error::GridTooLarge {
+            needed: u64::MAX,
+            budget
+        },
+        "8-D"
+    );
+    // Auto falls back to the sparse grid, which has no such limit.
+    let auto = PoissonDisk2::builder(unit_square(), 1e-5)
+        .max_grid_bytes(u64::MAX)
+        .build()
+        .expect("sparse fits an unlimited budget");
+    assert_eq!(auto.resolved_layout(), GridLayout::Sparse, "Auto");
 }
 
 // ---------------------------------------------------------------- messages
@@ -701,4 +923,87 @@ fn box_wider_than_2_pow_40_radii_is_box_too_wide_even_with_a_cap() {
         .max_points(Some(10))
         .build();
     assert!(ok.is_ok(), "{ok:?}");
+}
+
+/// `BoxTooWide` starts one ulp past 2⁴⁰ radii; at exactly 2⁴⁰ radii a
+/// capped sampler works.
+#[test]
+fn box_too_wide_starts_just_past_2_pow_40_radii() {
+    let limit = 2f64.powi(40);
+    let at = Domain::from_extent([limit, 1.0]).expect("valid box");
+    let s = PoissonDisk2::builder(at, 1.0)
+        .max_points(Some(20))
+        .build()
+        .expect("exactly 2^40 radii is accepted");
+    assert_eq!(s.resolved_layout(), GridLayout::Sparse, "sparse");
+    assert_eq!(assert_valid(&s, 12, usize::MAX), 20, "the cap is reached");
+    let past = Domain::from_extent([1.0, limit.next_up()]).expect("valid box");
+    assert_eq!(
+        PoissonDisk2::builder(past, 1.0)
+            .max_points(Some(20))
+            .build(),
+        Err(Error::BoxTooWide { axis: 1 }),
+        "one ulp past 2^40 radii"
+    );
+}
+
+/// Negative, subnormal and far-from-zero coordinates are ordinary values.
+#[test]
+fn negative_and_subnormal_bounds_are_ordinary_values() {
+    let negative = Domain::new([-3.0, -1e6 - 1.0], [-1.0, -1e6]).expect("valid box");
+    let s = PoissonDisk2::new(negative, 0.1).expect("valid");
+    assert!(assert_valid(&s, 13, usize::MAX) > 100, "fills the box");
+    // A box between two subnormals is 2 ulps wide: one point fits.
+    let subnormal = Domain::new([5e-324], [1.5e-323]).expect("a 2-ulp box");
+    let s = PoissonDisk::<1>::new(subnormal, 1e-150).expect("valid");
+    assert_eq!(assert_valid(&s, 14, usize::MAX), 1, "one point");
+}
+
+/// Coordinates are never `hi`, even where rounding can reach it: wrapped
+/// periodic candidates, few-ulp boxes, and boxes far from the origin
+/// whose coordinates are whole numbers.
+#[test]
+fn no_point_ever_equals_hi() {
+    let far = 2f64.powi(52);
+    let cases: Vec<(Domain<2>, f64)> = vec![
+        (
+            Domain::new([1.0, 0.0], [1.0 + 4.0 * f64::EPSILON, 1.0]).expect("box"),
+            0.05,
+        ),
+        (
+            Domain::new([far, -far], [far + 8.0, -far + 6.0]).expect("box"),
+            1.0,
+        ),
+        (Domain::new([0.0, 0.0], [1e-300, 1.0]).expect("box"), 0.1),
+        (Domain::from_extent([1.0, 1.0]).expect("box"), 0.1),
+    ];
+    for (domain, r) in cases {
+        for periodic in [[false, false], [true, false], [true, true]] {
+            let d = domain.with_periodic(periodic);
+            let hi = d.hi();
+            for candidates in CANDIDATES {
+                for layout in LAYOUTS {
+                    let built = PoissonDisk2::builder(d, r)
+                        .layout(layout)
+                        .candidates(candidates)
+                        .build();
+                    // A forced dense grid cannot reach r across a 1e-300
+                    // axis; Auto then takes the sparse one.
+                    let Ok(s) = built else {
+                        assert_ne!(layout, GridLayout::Auto, "{d:?}: {built:?}");
+                        continue;
+                    };
+                    for seed in 0..20 {
+                        for p in s.iter_seeded(seed) {
+                            assert!(
+                                p[0] < hi[0] && p[1] < hi[1],
+                                "{d:?} {candidates:?} {layout:?} seed {seed}: {p:?} reaches hi"
+                            );
+                        }
+                        assert_valid(&s, seed, usize::MAX);
+                    }
+                }
+            }
+        }
+    }
 }

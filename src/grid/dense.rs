@@ -34,8 +34,12 @@ pub(crate) struct Dense<const N: usize> {
     inv_side: [f64; N],
     /// Cells per axis inside the box.
     counts: [usize; N],
+    /// `counts - 1`: the last cell index inside the box on each axis.
+    last: [usize; N],
     pad: [usize; N],
     stride: [usize; N],
+    /// Linear index of the first cell inside the box: `Σ pad[i]·stride[i]`.
+    pad_base: usize,
     /// Linear offsets of the cells that can hold a point closer than `r`,
     /// nearest first so that a conflict is usually found in the first few.
     offsets: Vec<isize>,
@@ -50,9 +54,11 @@ impl<const N: usize> Dense<N> {
         let pad = plan.reach;
         let mut stride = [0usize; N];
         let mut total = 1usize;
-        for i in 0..N {
-            stride[i] = total;
-            total = total.checked_mul(plan.cells[i].checked_add(2 * pad[i])?)?;
+        let mut pad_base = 0usize;
+        for ((s, &cells), &p) in stride.iter_mut().zip(&plan.cells).zip(&pad) {
+            *s = total;
+            pad_base = pad_base.checked_add(p.checked_mul(total)?)?;
+            total = total.checked_mul(cells.checked_add(p.checked_mul(2)?)?)?;
         }
         let mut cells = Vec::new();
         cells.try_reserve_exact(total).ok()?;
@@ -67,8 +73,11 @@ impl<const N: usize> Dense<N> {
             lo: domain.lo(),
             inv_side: plan.side.map(|s| 1.0 / s),
             counts: plan.cells,
+            // Cell counts are at least 1 (`cell_count`).
+            last: plan.cells.map(|m| m.saturating_sub(1)),
             pad,
             stride,
+            pad_base,
             offsets,
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
@@ -79,7 +88,9 @@ impl<const N: usize> Dense<N> {
     /// Cell of a point inside the box, clamped against rounding at `hi`.
     #[inline(always)]
     fn cell_of(&self, p: &[f64; N]) -> [usize; N] {
-        core::array::from_fn(|i| {
+        let mut cell = [0usize; N];
+        let axes = self.lo.iter().zip(&self.inv_side).zip(&self.last);
+        for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
             // Through i64 (one instruction on x86-64; f64 -> usize takes
             // several), saturating, then clamped into the grid.
             #[expect(
@@ -87,14 +98,22 @@ impl<const N: usize> Dense<N> {
                 clippy::cast_sign_loss,
                 reason = "saturating float-to-int cast, then clamped into the grid"
             )]
-            let c = (((p[i] - self.lo[i]) * self.inv_side[i]) as i64).max(0) as usize;
-            c.min(self.counts[i] - 1)
-        })
+            let i = (((x - lo) * inv_side) as i64).max(0) as usize;
+            *c = i.min(last);
+        }
+        cell
     }
 
+    /// Linear index of a cell in padded coordinates.
     #[inline(always)]
     fn index(&self, padded: &[usize; N]) -> usize {
-        (0..N).map(|i| padded[i] * self.stride[i]).sum()
+        padded.iter().zip(&self.stride).map(|(c, s)| c * s).sum()
+    }
+
+    /// Linear index of a cell inside the box (as from [`Self::cell_of`]).
+    #[inline(always)]
+    fn base(&self, cell: &[usize; N]) -> usize {
+        self.index(cell) + self.pad_base
     }
 
     #[inline(always)]
@@ -122,22 +141,25 @@ impl<const N: usize> Dense<N> {
     /// Writes `p` into every ghost cell that stands for its cell across a
     /// periodic face (several when the period is shorter than the padding).
     fn write_images(&mut self, cell: &[usize; N], index: u32) {
-        let home: [usize; N] = core::array::from_fn(|i| cell[i] + self.pad[i]);
-        // Per axis, the first image and the step; bounded axes have one.
-        let first: [usize; N] = core::array::from_fn(|i| {
-            if self.periods[i] > 0.0 {
-                home[i] % self.counts[i]
+        // Per axis, in padded coordinates: the home cell, the first image
+        // and the end of the images (step `counts`); bounded axes have one.
+        let mut home = [0usize; N];
+        let mut first = [0usize; N];
+        let mut limit = [0usize; N];
+        let axes = cell
+            .iter()
+            .zip(&self.pad)
+            .zip(self.counts.iter().zip(&self.periods));
+        for (((h, f), l), ((&c, &pad), (&m, &period))) in
+            home.iter_mut().zip(&mut first).zip(&mut limit).zip(axes)
+        {
+            *h = c + pad;
+            (*f, *l) = if period > 0.0 {
+                (*h % m, m + 2 * pad)
             } else {
-                home[i]
-            }
-        });
-        let limit: [usize; N] = core::array::from_fn(|i| {
-            if self.periods[i] > 0.0 {
-                self.counts[i] + 2 * self.pad[i]
-            } else {
-                home[i] + 1
-            }
-        });
+                (*h, *h + 1)
+            };
+        }
         let mut at = first;
         loop {
             if at != home {
@@ -146,18 +168,23 @@ impl<const N: usize> Dense<N> {
                     *slot = index;
                 }
             }
-            // Odometer over the images of every axis.
-            let mut axis = 0;
-            loop {
-                if axis == N {
-                    return;
-                }
-                at[axis] += self.counts[axis];
-                if at[axis] < limit[axis] && self.periods[axis] > 0.0 {
+            // Odometer over the images of every axis: step the first axis
+            // that has another image, resetting the axes before it.
+            let mut stepped = false;
+            let axes = first
+                .iter()
+                .zip(&limit)
+                .zip(self.counts.iter().zip(&self.periods));
+            for (a, ((&f, &l), (&m, &period))) in at.iter_mut().zip(axes) {
+                *a += m;
+                if *a < l && period > 0.0 {
+                    stepped = true;
                     break;
                 }
-                at[axis] = first[axis];
-                axis += 1;
+                *a = f;
+            }
+            if !stepped {
+                return;
             }
         }
     }
@@ -166,8 +193,7 @@ impl<const N: usize> Dense<N> {
 impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     #[inline(always)]
     fn conflicts(&self, p: &[f64; N]) -> bool {
-        let cell = self.cell_of(p);
-        let base = self.index(&core::array::from_fn(|i| cell[i] + self.pad[i]));
+        let base = self.base(&self.cell_of(p));
         if self.any_periodic {
             self.scan::<true>(base, p)
         } else {
@@ -178,7 +204,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     #[inline(always)]
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
-        let base = self.index(&core::array::from_fn(|i| cell[i] + self.pad[i]));
+        let base = self.base(&cell);
         // More than u32::MAX - 1 points cannot be indexed: refuse the
         // candidate (the set stays valid, the run ends there).
         let Ok(index) = u32::try_from(self.points.len()) else {
@@ -210,8 +236,8 @@ fn stencil<const N: usize>(
     radius: f64,
 ) -> Option<Vec<isize>> {
     let r2 = radius * radius;
-    let reach: [isize; N] = core::array::from_fn(|i| isize::try_from(plan.reach[i]).unwrap_or(0));
-    let stride: [isize; N] = core::array::from_fn(|i| isize::try_from(stride[i]).unwrap_or(0));
+    let reach: [isize; N] = plan.reach.map(|p| isize::try_from(p).unwrap_or(0));
+    let stride: [isize; N] = stride.map(|s| isize::try_from(s).unwrap_or(0));
     let mut cells = Vec::new();
     let mut d = reach.map(|p| -p);
     loop {
@@ -225,21 +251,22 @@ fn stencil<const N: usize>(
             centre2 += (a * side) * (a * side);
         }
         if gap2 < r2 {
-            let linear: isize = (0..N).map(|i| d[i] * stride[i]).sum();
+            let linear: isize = d.iter().zip(&stride).map(|(d, s)| d * s).sum();
             cells.push((gap2, centre2, linear));
         }
-        let mut axis = 0;
-        loop {
-            if axis == N {
-                cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-                return Some(cells.into_iter().map(|c| c.2).collect());
-            }
-            if d[axis] < reach[axis] {
-                d[axis] += 1;
+        // Odometer over -reach..=reach on every axis.
+        let mut stepped = false;
+        for (x, &p) in d.iter_mut().zip(&reach) {
+            if *x < p {
+                *x += 1;
+                stepped = true;
                 break;
             }
-            d[axis] = -reach[axis];
-            axis += 1;
+            *x = -p;
+        }
+        if !stepped {
+            cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+            return Some(cells.into_iter().map(|c| c.2).collect());
         }
     }
 }

@@ -126,24 +126,27 @@ fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePl
     let max_side = radius / (N as f64).sqrt();
     let mut counts = [0u64; N];
     let mut side = [0.0; N];
-    for i in 0..N {
-        let mut m = cell_count((extent[i] / max_side).ceil()).ok_or(u64::MAX)?;
+    for ((count, s), &e) in counts.iter_mut().zip(&mut side).zip(&extent) {
+        let mut m = cell_count((e / max_side).ceil()).ok_or(u64::MAX)?;
         // Division can round the side up past r/√N; one more cell fixes it.
-        if extent[i] / to_f64(m) > max_side {
-            m += 1;
+        if e / to_f64(m) > max_side {
+            m = m.checked_add(1).ok_or(u64::MAX)?;
         }
-        counts[i] = m;
-        side[i] = extent[i] / to_f64(m);
+        *count = m;
+        *s = e / to_f64(m);
     }
     let max_cells = counts.iter().copied().max().unwrap_or(1);
     let eta = rounding_margin(to_f64(max_cells));
     let mut reach = [0usize; N];
     let mut total: u64 = 1;
-    for i in 0..N {
+    for ((r, &s), &m) in reach.iter_mut().zip(&side).zip(&counts) {
         // Cells at |d| are needed while (|d| - 1 - η)·side < r.
-        let p = cell_count((radius / side[i] + eta).ceil()).ok_or(u64::MAX)?;
-        reach[i] = usize::try_from(p).map_err(|_| u64::MAX)?;
-        let padded = counts[i].checked_add(2 * p).ok_or(u64::MAX)?;
+        let p = cell_count((radius / s + eta).ceil()).ok_or(u64::MAX)?;
+        *r = usize::try_from(p).map_err(|_| u64::MAX)?;
+        let padded = p
+            .checked_mul(2)
+            .and_then(|pp| m.checked_add(pp))
+            .ok_or(u64::MAX)?;
         total = total.checked_mul(padded).ok_or(u64::MAX)?;
     }
     // Cells hold u32 indices; the points live in a growing vector, bounded
@@ -163,13 +166,16 @@ fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePl
         reason = "finite, positive and below u64::MAX"
     )]
     let bytes = cell_bytes.saturating_add(point_bytes as u64);
-    // u32 indices, with 0 reserved for the empty sentinel.
+    // u32 indices, with 0 reserved for the empty sentinel. Past that, or
+    // past the address space, no budget makes a dense grid possible: report
+    // it as `u64::MAX` like every other impossible grid, never as `bytes`,
+    // which can be within the budget.
     if points >= f64::from(u32::MAX) {
-        return Err(bytes);
+        return Err(u64::MAX);
     }
     let cells = counts.map(|m| usize::try_from(m).unwrap_or(usize::MAX));
     if cells.contains(&usize::MAX) || usize::try_from(total).is_err() {
-        return Err(bytes);
+        return Err(u64::MAX);
     }
     Ok(DensePlan {
         cells,
@@ -215,12 +221,8 @@ fn ln_max_points<const N: usize>(domain: &Domain<N>, radius: f64) -> f64 {
     let periodic = domain.periodic();
     let half = radius / 2.0;
     let mut ln = -unit_ball_volume(N).ln();
-    for i in 0..N {
-        let grown = if periodic[i] {
-            extent[i]
-        } else {
-            extent[i] + radius
-        };
+    for (&e, &periodic) in extent.iter().zip(&periodic) {
+        let grown = if periodic { e } else { e + radius };
         ln += (grown / half).ln();
     }
     ln
@@ -235,35 +237,33 @@ fn plan_sparse<const N: usize>(
     let periodic = domain.periodic();
     let mut cells = [0i64; N];
     let mut side = [0.0; N];
-    for i in 0..N {
-        let m = if periodic[i] {
+    let axes = extent.iter().zip(&periodic);
+    for ((c, s), (&e, &periodic)) in cells.iter_mut().zip(&mut side).zip(axes) {
+        let m = if periodic {
             // Whole cells per period, so wrapped cells line up.
-            cell_count((extent[i] / radius).floor()).ok_or(u64::MAX)?
+            cell_count((e / radius).floor()).ok_or(u64::MAX)?
         } else {
-            cell_count((extent[i] / radius).ceil()).ok_or(u64::MAX)?
+            cell_count((e / radius).ceil()).ok_or(u64::MAX)?
         };
-        cells[i] = i64::try_from(m).map_err(|_| u64::MAX)?;
-        side[i] = if periodic[i] {
-            extent[i] / to_f64(m)
-        } else {
-            radius
-        };
+        *c = i64::try_from(m).map_err(|_| u64::MAX)?;
+        *s = if periodic { e / to_f64(m) } else { radius };
     }
     let max_cells = cells.iter().copied().max().unwrap_or(1);
     #[expect(clippy::cast_precision_loss, reason = "<= 2^40")]
     let eta = rounding_margin(max_cells as f64);
     let mut reach = [0i64; N];
-    for i in 0..N {
-        let p = (radius / side[i] + eta).ceil();
+    let axes = side.iter().zip(&cells).zip(&periodic);
+    for (r, ((&s, &m), &periodic)) in reach.iter_mut().zip(axes) {
+        let p = (radius / s + eta).ceil();
         // A periodic axis narrower than the reach is searched whole, once
         // (see `Sparse::conflicts`), so its reach never needs to exceed `m`.
-        reach[i] = match cell_count(p) {
+        *r = match cell_count(p) {
             Some(p) => i64::try_from(p).map_err(|_| u64::MAX)?,
-            None if periodic[i] => cells[i],
+            None if periodic => m,
             None => return Err(u64::MAX),
         };
-        if periodic[i] {
-            reach[i] = reach[i].min(cells[i]);
+        if periodic {
+            *r = (*r).min(m);
         }
     }
     let ln_points = ln_max_points(domain, radius);

@@ -9,7 +9,7 @@
 
 use super::{NeighbourGrid, SparsePlan};
 use crate::domain::Domain;
-use crate::vector::periodic_distance_squared;
+use crate::vector::{periodic_distance_squared, zip_map};
 use core::hash::{BuildHasherDefault, Hasher};
 use smallvec::SmallVec;
 use std::collections::HashMap;
@@ -48,19 +48,28 @@ impl<const N: usize> Sparse<N> {
 
     #[inline(always)]
     fn cell_of(&self, p: &[f64; N]) -> [i64; N] {
-        core::array::from_fn(|i| {
+        let mut cell = [0i64; N];
+        let axes = self.lo.iter().zip(&self.inv_side).zip(&self.counts);
+        for ((c, x), ((lo, inv_side), &m)) in cell.iter_mut().zip(p).zip(axes) {
             #[expect(
                 clippy::cast_possible_truncation,
                 reason = "saturating float-to-int cast, then clamped into the grid"
             )]
-            let c = ((p[i] - self.lo[i]) * self.inv_side[i]) as i64;
-            c.clamp(0, self.counts[i] - 1)
-        })
+            let i = ((x - lo) * inv_side) as i64;
+            // Not `clamp`, which panics if `m < 1` (never: see `cell_count`).
+            *c = i.max(0).min(m - 1);
+        }
+        cell
     }
 
     /// Depth-first over the axes: picks the neighbour cell's index on
     /// `axis`, keeping only those whose lower bound on the distance so far
     /// (`partial`) stays below `r²`.
+    #[expect(
+        clippy::indexing_slicing,
+        reason = "every array has length N, and axis < N wherever one is indexed: \
+                  the function returns at axis == N first, and recurses with axis + 1"
+    )]
     fn visit(
         &self,
         axis: usize,
@@ -121,7 +130,7 @@ impl<const N: usize> Sparse<N> {
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflicts(&self, p: &[f64; N]) -> bool {
         let cell = self.cell_of(p);
-        let offset: [f64; N] = core::array::from_fn(|i| p[i] - self.lo[i]);
+        let offset = zip_map(p, &self.lo, |x, lo| x - lo);
         let mut key = [0i64; N];
         self.visit(0, &cell, &offset, &mut key, 0.0, p)
     }
