@@ -16,8 +16,8 @@ pub const DEFAULT_ATTEMPTS: u32 = 30;
 
 /// Smallest and largest radius accepted: beyond them `r²` (or the squared
 /// distances compared with it) is no longer a normal `f64`.
-const MIN_RADIUS: f64 = 1e-150;
-const MAX_RADIUS: f64 = 1e150;
+pub(crate) const MIN_RADIUS: f64 = 1e-150;
+pub(crate) const MAX_RADIUS: f64 = 1e150;
 
 /// A validated Poisson disk sampler in `N` dimensions: domain, radius,
 /// attempts, candidate distribution and grid choice.

@@ -31,6 +31,7 @@ mod exact;
 mod window;
 
 use crate::annulus::{CandidateSampler, Candidates};
+use crate::bridson::{MAX_RADIUS, MIN_RADIUS};
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::vector::add;
@@ -205,7 +206,7 @@ impl TiledBuilder {
             (None, Spacing::PerPixel(n)) if n > 0.0 => (density / n).sqrt(),
             (None, Spacing::PerPixel(_)) => f64::NAN,
         };
-        if !(1e-150..=1e150).contains(&radius) {
+        if !(MIN_RADIUS..=MAX_RADIUS).contains(&radius) {
             return Err(Error::InvalidRadius);
         }
         if self.attempts == 0 {
