@@ -13,9 +13,9 @@ use rand::Rng;
 #[non_exhaustive]
 pub enum Candidates {
     /// Bridson's original: uniform **in volume** over the annulus (shell)
-    /// `r <= |d| < 2r` around the active point. In 2-D drawn directly (radius
-    /// `r·√(1 + 3u)`, uniform angle), elsewhere by rejection from the cube
-    /// `[-2r, 2r)^N`. Gives the classic pattern: in 2-D with `k = 30`,
+    /// `r <= |d| < 2r` around the active point. In 2-D and 3-D drawn directly
+    /// (radius `r·√(1 + 3u)` or `r·∛(1 + 7u)`, uniform direction), elsewhere
+    /// by rejection from the cube `[-2r, 2r)^N`. Gives the classic pattern: in 2-D with `k = 30`,
     /// a relative radius ρ ≈ 0.73 (see [`relative_radius`](crate::relative_radius)).
     #[default]
     Annulus,
@@ -86,6 +86,29 @@ impl<const N: usize> CandidateSampler<N> {
                 }
                 d
             }
+            Candidates::Annulus if N == 3 => {
+                // Two draws, no branch: radius r·∛(1 + 7u) (uniform in
+                // volume over r..2r), height z uniform in [-1, 1) and a
+                // uniform angle (Archimedes: uniform on the sphere).
+                let x = rng.next_u64();
+                let w = rng.next_u64();
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    clippy::cast_possible_wrap,
+                    reason = "splitting words into their 32-bit halves"
+                )]
+                let (high, z, angle) = ((x >> 32) as u32, x as u32 as i32, (w >> 32) as u32);
+                let u = f64::from(high) * TWO_POW_M32;
+                let rho = self.radius * cube_root_1_to_8(1.0 + 7.0 * u);
+                let z = f64::from(z) * (2.0 * TWO_POW_M32);
+                let (c, s) = angle_direction(angle);
+                let ring = rho * (1.0 - z * z).sqrt();
+                let mut d = [0.0; N];
+                if let [x, y, h] = d.as_mut_slice() {
+                    (*x, *y, *h) = (ring * c, ring * s, rho * z);
+                }
+                d
+            }
             Candidates::Annulus => loop {
                 // Uniform in the cube [-2r, 2r)^N, kept if r <= |d| < 2r:
                 // uniform in volume over the shell. Acceptance: 59 % in 2-D,
@@ -150,84 +173,97 @@ fn unit_direction<const N: usize, R: Rng + ?Sized>(rng: &mut R) -> [f64; N] {
 
 const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
-/// Signed permutations taking `(cos t, sin t)` to the direction at angle
-/// `q·π/2 + t`, for quadrant `q`: `(m[0]·c + m[1]·s, m[2]·c + m[3]·s)`.
-const QUADRANTS: [[f64; 4]; 4] = [
-    [1.0, 0.0, 0.0, 1.0],
-    [0.0, -1.0, 1.0, 0.0],
-    [-1.0, 0.0, 0.0, -1.0],
-    [0.0, 1.0, -1.0, 0.0],
-];
+/// Entries in [`DIRECTIONS`]; the top `log2` of an angle's 32 bits pick one.
+const TABLE_BITS: u32 = 8;
+
+/// `(cos, sin)` of `2π·i/256`, computed at compile time by [`series`]: basic
+/// arithmetic only, so the same bits on every platform.
+const DIRECTIONS: [(f64, f64); 1 << TABLE_BITS] = directions();
+
+const fn directions() -> [(f64, f64); 1 << TABLE_BITS] {
+    const QUARTER: usize = 1 << (TABLE_BITS - 2);
+    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
+    let mut i = 0;
+    while i < table.len() {
+        // Each quadrant from [0, π/2) by a quarter turn, so the series only
+        // ever sees small angles.
+        #[expect(clippy::cast_precision_loss, reason = "i < 64")]
+        let t = (i % QUARTER) as f64 * (core::f64::consts::TAU / (1 << TABLE_BITS) as f64);
+        let (c, s) = series(t);
+        #[expect(
+            clippy::indexing_slicing,
+            reason = "i < table.len() by the loop condition (compile time only)"
+        )]
+        let entry = &mut table[i];
+        *entry = match i / QUARTER {
+            0 => (c, s),
+            1 => (-s, c),
+            2 => (-c, -s),
+            _ => (s, -c),
+        };
+        i += 1;
+    }
+    table
+}
 
 /// The unit direction at angle `2π · bits / 2³²`, without a branch: the top
-/// two bits pick the quadrant, the other 30 the angle inside it.
+/// 8 bits pick a table entry, the other 24 a rotation by `δ < 2π/256`, whose
+/// cosine and sine short Taylor polynomials give to within 1e-17.
 #[inline(always)]
 fn angle_direction(bits: u32) -> (f64, f64) {
-    const QUARTER_PER_UNIT: f64 = core::f64::consts::FRAC_PI_2 / (1u32 << 30) as f64;
-    let t = f64::from(bits & ((1 << 30) - 1)) * QUARTER_PER_UNIT;
-    let (c, s) = quarter_cos_sin(t);
-    #[expect(
-        clippy::indexing_slicing,
-        reason = "bits >> 30 < 4 for a u32, and QUADRANTS has 4 rows"
-    )]
-    let m = QUADRANTS[(bits >> 30) as usize];
-    (m[0] * c + m[1] * s, m[2] * c + m[3] * s)
+    const DELTA_PER_UNIT: f64 = core::f64::consts::TAU * TWO_POW_M32;
+    let delta = f64::from(bits & ((1 << (32 - TABLE_BITS)) - 1)) * DELTA_PER_UNIT;
+    let x = delta * delta;
+    let cd = 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 24.0 + x * (-1.0 / 720.0)));
+    let sd = delta * (1.0 + x * (-1.0 / 6.0 + x * (1.0 / 120.0 + x * (-1.0 / 5040.0))));
+    // `bits >> 24 < 256 = DIRECTIONS.len()`: never the fallback.
+    let (c, s) = DIRECTIONS
+        .get((bits >> (32 - TABLE_BITS)) as usize)
+        .copied()
+        .unwrap_or((1.0, 0.0));
+    (c * cd - s * sd, s * cd + c * sd)
 }
 
-/// `(cos t, sin t)` for `0 <= t < π/2` by Taylor polynomials (through
-/// `t¹⁴` and `t¹³`), evaluated in Estrin form to keep the dependency chain
-/// short: basic arithmetic only, so bit-identical on every platform; error
-/// below 1e-9, far finer than matters for a direction.
+/// `∛a` for `1 <= a < 8`: a cubic fit (relative error < 2e-2) refined by
+/// two Halley steps (each cubes the error) to about 4e-16. Basic arithmetic
+/// only, so reproducible, unlike `f64::cbrt`.
 #[inline(always)]
-fn quarter_cos_sin(t: f64) -> (f64, f64) {
-    // (-1)^k / (2k)! and (-1)^k / (2k+1)!.
-    const C: [f64; 8] = [
-        1.0,
-        -1.0 / 2.0,
-        1.0 / 24.0,
-        -1.0 / 720.0,
-        1.0 / 40_320.0,
-        -1.0 / 3_628_800.0,
-        1.0 / 479_001_600.0,
-        -1.0 / 87_178_291_200.0,
-    ];
-    const S: [f64; 7] = [
-        1.0,
-        -1.0 / 6.0,
-        1.0 / 120.0,
-        -1.0 / 5040.0,
-        1.0 / 362_880.0,
-        -1.0 / 39_916_800.0,
-        1.0 / 6_227_020_800.0,
-    ];
-    let x = t * t;
-    let x2 = x * x;
-    let x4 = x2 * x2;
-    let c = (C[0] + C[1] * x)
-        + x2 * (C[2] + C[3] * x)
-        + x4 * ((C[4] + C[5] * x) + x2 * (C[6] + C[7] * x));
-    let s = (S[0] + S[1] * x) + x2 * (S[2] + S[3] * x) + x4 * ((S[4] + S[5] * x) + x2 * S[6]);
-    (c, t * s)
+fn cube_root_1_to_8(a: f64) -> f64 {
+    let mut y = 0.721_360_686_538_094_6
+        + a * (0.328_966_829_104_385_96
+            + a * (-0.034_739_246_696_413_255 + a * 0.001_714_508_497_739_981_4));
+    for _ in 0..2 {
+        let y3 = y * y * y;
+        y *= (y3 + 2.0 * a) / (2.0 * y3 + a);
+    }
+    y
 }
 
-/// `(cos θ, sin θ)` for `0 <= θ <= 2π`, by a fixed Taylor series in basic
-/// arithmetic only, so it is bit-identical on every platform. Accurate to
-/// about 1e-15, ample for spacing candidate directions.
-fn cos_sin(theta: f64) -> (f64, f64) {
-    // Reduce to |x| <= π/4 by quarter turns, then sum the series.
-    let quarter = core::f64::consts::FRAC_PI_2;
-    let turns = (theta / quarter).round();
-    let x = theta - turns * quarter;
+/// `(cos x, sin x)` by their Taylor series through `x²⁴` and `x²⁵`: within
+/// an ulp or two for `|x| <= π/2`. A `const fn`, so [`DIRECTIONS`] is built by
+/// the compiler.
+const fn series(x: f64) -> (f64, f64) {
     let x2 = x * x;
     let (mut c, mut s) = (1.0, x);
     let (mut tc, mut ts) = (1.0, x);
-    for n in 1..12 {
-        let n = f64::from(n);
-        tc *= -x2 / ((2.0 * n - 1.0) * (2.0 * n));
-        ts *= -x2 / ((2.0 * n) * (2.0 * n + 1.0));
+    let mut m = 1.0;
+    while m < 13.0 {
+        tc *= -x2 / ((2.0 * m - 1.0) * (2.0 * m));
+        ts *= -x2 / ((2.0 * m) * (2.0 * m + 1.0));
         c += tc;
         s += ts;
+        m += 1.0;
     }
+    (c, s)
+}
+
+/// `(cos θ, sin θ)` for `0 <= θ <= 2π`, by [`series`] after reduction to
+/// `|x| <= π/4`: bit-identical on every platform, accurate to about 1e-15,
+/// ample for spacing candidate directions.
+fn cos_sin(theta: f64) -> (f64, f64) {
+    let quarter = core::f64::consts::FRAC_PI_2;
+    let turns = (theta / quarter).round();
+    let (c, s) = series(theta - turns * quarter);
     // `turns` is 0..=4 here, so the rem_euclid result fits any integer.
     match turns.rem_euclid(4.0) {
         0.0 => (c, s),
@@ -248,8 +284,34 @@ mod tests {
             let bits = u32::try_from((i << 24).min(u64::from(u32::MAX))).unwrap();
             let theta = core::f64::consts::TAU * f64::from(bits) / 4_294_967_296.0;
             let (c, s) = angle_direction(bits);
-            assert!((c - theta.cos()).abs() < 1e-9, "cos({theta}) = {c}");
-            assert!((s - theta.sin()).abs() < 1e-9, "sin({theta}) = {s}");
+            assert!((c - theta.cos()).abs() < 1e-15, "cos({theta}) = {c}");
+            assert!((s - theta.sin()).abs() < 1e-15, "sin({theta}) = {s}");
+        }
+        // Inside a table step, where the polynomials do the work.
+        for bits in [
+            1u32,
+            0x00ff_ffff,
+            0x1234_5678,
+            0x7fff_ffff,
+            0xdead_beef,
+            u32::MAX,
+        ] {
+            let theta = core::f64::consts::TAU * f64::from(bits) / 4_294_967_296.0;
+            let (c, s) = angle_direction(bits);
+            assert!((c - theta.cos()).abs() < 1e-15, "cos({theta}) = {c}");
+            assert!((s - theta.sin()).abs() < 1e-15, "sin({theta}) = {s}");
+        }
+    }
+
+    #[test]
+    fn cube_root_matches_libm() {
+        for i in 0..=7000 {
+            let a = 1.0 + f64::from(i) / 1000.0;
+            let y = cube_root_1_to_8(a);
+            assert!(
+                (y - a.cbrt()).abs() <= 2.0 * f64::EPSILON * y,
+                "cbrt({a}) = {y}"
+            );
         }
     }
 
@@ -293,6 +355,36 @@ mod tests {
             check_offsets::<3>(kind);
             check_offsets::<5>(kind);
             check_offsets::<8>(kind);
+        }
+    }
+
+    #[test]
+    fn annulus_is_uniform_in_volume_3d() {
+        // Uniform in volume over r..2r: P(|d| < 1.5r) = (1.5³ - 1) / (8 - 1);
+        // uniform in direction: each octant gets 1/8.
+        let sampler = CandidateSampler::<3>::new(Candidates::Annulus, 1.0, 30);
+        let mut rng = seeded_rng(4);
+        let mut state = [0.0; 3];
+        let n = 200_000;
+        let (mut inner, mut octants) = (0u32, [0u32; 8]);
+        for _ in 0..n {
+            let d = sampler.offset(&mut rng, &mut state);
+            inner += u32::from(norm_squared(&d) < 2.25);
+            let octant = d
+                .iter()
+                .enumerate()
+                .map(|(i, &x)| usize::from(x >= 0.0) << i)
+                .sum::<usize>();
+            octants[octant] += 1;
+        }
+        let share = f64::from(inner) / f64::from(n);
+        assert!(
+            (share - 2.375 / 7.0).abs() < 0.005,
+            "share inside 1.5r: {share}"
+        );
+        for (i, &count) in octants.iter().enumerate() {
+            let share = f64::from(count) / f64::from(n);
+            assert!((share - 0.125).abs() < 0.003, "octant {i}: {share}");
         }
     }
 

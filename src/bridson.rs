@@ -2,6 +2,7 @@
 //! lazily as an iterator.
 
 use crate::annulus::{CandidateSampler, Candidates};
+use crate::blockers::Blockers;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -280,6 +281,7 @@ impl<const N: usize> PoissonDisk<N> {
             grid: Grid::build(&self.plan, &c.domain, c.radius),
             active: Vec::new(),
             candidates: CandidateSampler::new(c.candidates, c.radius, c.attempts),
+            radius_squared: c.radius * c.radius,
             attempts: c.attempts,
             remaining: c.max_points.unwrap_or(u64::MAX),
             started: false,
@@ -316,6 +318,7 @@ pub struct Iter<const N: usize, R> {
     /// Points that may still have room around them, stored inline.
     active: Vec<[f64; N]>,
     candidates: CandidateSampler<N>,
+    radius_squared: f64,
     attempts: u32,
     remaining: u64,
     started: bool,
@@ -335,6 +338,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 grid,
                 active,
                 candidates,
+                radius_squared,
                 attempts,
                 ..
             } = self;
@@ -343,6 +347,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 domain,
                 active,
                 candidates,
+                radius_squared: *radius_squared,
                 attempts: *attempts,
             };
             match grid {
@@ -395,23 +400,57 @@ struct State<'a, const N: usize, R> {
     domain: &'a Domain<N>,
     active: &'a mut Vec<[f64; N]>,
     candidates: &'a CandidateSampler<N>,
+    radius_squared: f64,
     attempts: u32,
 }
 
 impl<const N: usize, R: Rng> State<'_, N, R> {
+    /// Bridson's loop up to the next accepted point, with a cache of
+    /// `B` recent conflicts sized for the dimension.
+    #[inline(always)]
+    fn grow<G: NeighbourGrid<N>>(self, grid: &mut G) -> Option<[f64; N]> {
+        // How many recent conflicts a pick remembers. About 5 distinct
+        // points turn candidates away per pick in 2-D, 9 in 3-D; 8 slots
+        // catch 70 % (2-D) and 40 % (3-D) of the rejections, and 16 were no
+        // faster in 3-D. In 4-D 16 slots ran 3.5 % fewer instructions than
+        // 8 (cachegrind, 15 500 points), in 5-D the same.
+        if N <= 3 {
+            self.grow_cached::<G, 8>(grid)
+        } else {
+            self.grow_cached::<G, 16>(grid)
+        }
+    }
+
     /// Bridson's loop, up to the next accepted point: pick a random active
     /// point, throw up to `k` candidates around it, keep the first that is
     /// at least `r` from every point; if none is, retire the active point.
+    /// The points that turn candidates away are remembered for the rest of
+    /// the pick and checked first ([`Blockers`]); that changes no decision.
     #[inline(always)]
-    fn grow<G: NeighbourGrid<N>>(self, grid: &mut G) -> Option<[f64; N]> {
+    fn grow_cached<G: NeighbourGrid<N>, const B: usize>(self, grid: &mut G) -> Option<[f64; N]> {
+        let periodic = self.domain.any_periodic();
+        let periods = self.domain.periods();
         while !self.active.is_empty() {
             let i = below(self.rng, self.active.len());
             let parent = *self.active.get(i)?;
             let mut state = self.candidates.start(self.rng);
+            let mut blockers = Blockers::<N, B>::new();
             for _ in 0..self.attempts {
                 let offset = self.candidates.offset(self.rng, &mut state);
                 let mut candidate = add(&parent, &offset);
-                if !self.domain.wrap(&mut candidate) || grid.conflicts(&candidate) {
+                if !self.domain.wrap(&mut candidate) {
+                    continue;
+                }
+                let blocked = if periodic {
+                    blockers.block_periodic(&candidate, self.radius_squared, &periods)
+                } else {
+                    blockers.block(&candidate, self.radius_squared)
+                };
+                if blocked {
+                    continue;
+                }
+                if let Some(q) = grid.conflict(&candidate) {
+                    blockers.push(&q);
                     continue;
                 }
                 if grid.insert(candidate) {

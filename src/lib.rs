@@ -119,6 +119,7 @@
 )]
 
 mod annulus;
+mod blockers;
 mod bridson;
 mod density;
 mod domain;

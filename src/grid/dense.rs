@@ -117,7 +117,7 @@ impl<const N: usize> Dense<N> {
     }
 
     #[inline(always)]
-    fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> bool {
+    fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> Option<[f64; N]> {
         for &off in &self.offsets {
             // Always Some: the padding is as wide as the largest offset.
             let Some(&index) = self.cells.get(base.wrapping_add_signed(off)) else {
@@ -132,10 +132,10 @@ impl<const N: usize> Dense<N> {
                 distance_squared(p, q)
             };
             if d2 < self.radius_squared {
-                return true;
+                return Some(*q);
             }
         }
-        false
+        None
     }
 
     /// Writes `p` into every ghost cell that stands for its cell across a
@@ -192,7 +192,7 @@ impl<const N: usize> Dense<N> {
 
 impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     #[inline(always)]
-    fn conflicts(&self, p: &[f64; N]) -> bool {
+    fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let base = self.base(&self.cell_of(p));
         if self.any_periodic {
             self.scan::<true>(base, p)
@@ -301,8 +301,11 @@ mod tests {
             .with_periodic([true, false]);
         let mut g = dense(&d, 0.1);
         assert!(g.insert([0.99, 0.5]), "insert");
-        assert!(g.conflicts(&[0.02, 0.5]), "wrapped distance 0.03 < 0.1");
-        assert!(!g.conflicts(&[0.2, 0.5]), "distance 0.21");
+        assert!(
+            g.conflict(&[0.02, 0.5]).is_some(),
+            "wrapped distance 0.03 < 0.1"
+        );
+        assert!(g.conflict(&[0.2, 0.5]).is_none(), "distance 0.21");
     }
 
     #[test]
@@ -313,7 +316,10 @@ mod tests {
             .with_periodic([true, false]);
         let mut g = dense(&d, 0.1);
         assert!(g.insert([0.01, 0.5]), "insert");
-        assert!(g.conflicts(&[0.04, 0.58]), "wrapped dx 0.02, dy 0.08");
-        assert!(!g.conflicts(&[0.04, 0.65]), "dy 0.15 > r");
+        assert!(
+            g.conflict(&[0.04, 0.58]).is_some(),
+            "wrapped dx 0.02, dy 0.08"
+        );
+        assert!(g.conflict(&[0.04, 0.65]).is_none(), "dy 0.15 > r");
     }
 }

@@ -78,9 +78,11 @@ pub(crate) struct SparsePlan<const N: usize> {
 
 /// What the sampler needs of a grid.
 pub(crate) trait NeighbourGrid<const N: usize> {
-    /// Whether some stored point is closer than `r` to `p` (which lies in
-    /// the domain). Exact: compares squared distances summed in axis order.
-    fn conflicts(&self, p: &[f64; N]) -> bool;
+    /// A stored point closer than `r` to `p` (which lies in the domain), if
+    /// any: the first one found, which the sampler remembers (see
+    /// `blockers.rs`). Exact: compares squared distances summed in axis
+    /// order.
+    fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]>;
     /// Stores `p`; returns `false` (and stores nothing) if the layout has no
     /// room for it, which the sampler treats as a failed attempt.
     fn insert(&mut self, p: [f64; N]) -> bool;

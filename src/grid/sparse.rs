@@ -78,12 +78,13 @@ impl<const N: usize> Sparse<N> {
         key: &mut [i64; N],
         partial: f64,
         p: &[f64; N],
-    ) -> bool {
+    ) -> Option<[f64; N]> {
         if axis == N {
-            return self.map.get(key).is_some_and(|points| {
+            return self.map.get(key).and_then(|points| {
                 points
                     .iter()
-                    .any(|q| periodic_distance_squared(p, q, &self.periods) < self.radius_squared)
+                    .find(|q| periodic_distance_squared(p, q, &self.periods) < self.radius_squared)
+                    .copied()
             });
         }
         let (m, reach, c) = (self.counts[axis], self.reach[axis], cell[axis]);
@@ -91,11 +92,11 @@ impl<const N: usize> Sparse<N> {
             // The reach wraps onto itself: visit each cell once, no bound.
             for k in 0..m {
                 key[axis] = k;
-                if self.visit(axis + 1, cell, offset, key, partial, p) {
-                    return true;
+                if let Some(q) = self.visit(axis + 1, cell, offset, key, partial, p) {
+                    return Some(q);
                 }
             }
-            return false;
+            return None;
         }
         let (side, t) = (self.side[axis], offset[axis]);
         // Offsets 0, -1, 1, -2, 2, …: nearest first, for an early exit.
@@ -119,16 +120,16 @@ impl<const N: usize> Sparse<N> {
                 continue;
             }
             key[axis] = k;
-            if self.visit(axis + 1, cell, offset, key, bound, p) {
-                return true;
+            if let Some(q) = self.visit(axis + 1, cell, offset, key, bound, p) {
+                return Some(q);
             }
         }
-        false
+        None
     }
 }
 
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
-    fn conflicts(&self, p: &[f64; N]) -> bool {
+    fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let cell = self.cell_of(p);
         let offset = zip_map(p, &self.lo, |x, lo| x - lo);
         let mut key = [0i64; N];
@@ -211,9 +212,12 @@ mod tests {
             for sign in [-1.0, 1.0] {
                 let mut q = [0.5; 3];
                 q[axis] += sign * 0.124;
-                assert!(g.conflicts(&q), "axis {axis} sign {sign}");
+                assert!(g.conflict(&q).is_some(), "axis {axis} sign {sign}");
                 q[axis] = 0.5 + sign * 0.125;
-                assert!(!g.conflicts(&q), "exactly r is allowed: axis {axis}");
+                assert!(
+                    g.conflict(&q).is_none(),
+                    "exactly r is allowed: axis {axis}"
+                );
             }
         }
     }
@@ -225,7 +229,7 @@ mod tests {
             .with_periodic([true, true]);
         let mut g = sparse(&d, 0.1);
         assert!(g.insert([0.99, 0.01]), "insert");
-        assert!(g.conflicts(&[0.02, 0.24]), "both axes wrap");
-        assert!(!g.conflicts(&[0.5, 0.12]), "far");
+        assert!(g.conflict(&[0.02, 0.24]).is_some(), "both axes wrap");
+        assert!(g.conflict(&[0.5, 0.12]).is_none(), "far");
     }
 }
