@@ -8,6 +8,9 @@ mod common;
 #[path = "../fuzz/common/batch.rs"]
 mod batch;
 
+#[path = "../fuzz/common/streaming.rs"]
+mod streaming;
+
 #[cfg(feature = "serde")]
 #[path = "../fuzz/common/config_json.rs"]
 mod config_json;
@@ -58,6 +61,11 @@ fn batch_corpus() {
     replay("batch", batch::run);
 }
 
+#[test]
+fn streaming_corpus() {
+    replay("streaming", streaming::run);
+}
+
 #[cfg(feature = "serde")]
 #[test]
 fn config_json_corpus() {
@@ -70,5 +78,14 @@ fn batch_decodes_short_inputs() {
     for len in 0..=3 {
         batch::run(&vec![0xff; len]);
         batch::run(&vec![0; len]);
+    }
+}
+
+/// The decoder accepts every input, even an empty one.
+#[test]
+fn streaming_decodes_short_inputs() {
+    for len in 0..=3 {
+        streaming::run(&vec![0xff; len]);
+        streaming::run(&vec![0; len]);
     }
 }
