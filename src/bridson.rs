@@ -1,7 +1,7 @@
 //! The sampler: Bridson's algorithm, configured and validated up front, run
 //! lazily as an iterator.
 
-use crate::annulus::{CandidateSampler, Candidates};
+use crate::annulus::{Ahead, CandidateSampler, Candidates};
 use crate::blockers::Blockers;
 use crate::domain::Domain;
 use crate::error::Error;
@@ -285,6 +285,7 @@ impl<const N: usize> PoissonDisk<N> {
             attempts: c.attempts,
             remaining: c.max_points.unwrap_or(u64::MAX),
             started: false,
+            ahead: Ahead::new(),
         }
     }
 
@@ -322,6 +323,7 @@ pub struct Iter<const N: usize, R> {
     attempts: u32,
     remaining: u64,
     started: bool,
+    ahead: Ahead<N>,
 }
 
 impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
@@ -340,6 +342,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 candidates,
                 radius_squared,
                 attempts,
+                ahead,
                 ..
             } = self;
             let state = State {
@@ -349,6 +352,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 candidates,
                 radius_squared: *radius_squared,
                 attempts: *attempts,
+                ahead,
             };
             match grid {
                 Grid::Dense(g) => state.grow(g),
@@ -402,6 +406,7 @@ struct State<'a, const N: usize, R> {
     candidates: &'a CandidateSampler<N>,
     radius_squared: f64,
     attempts: u32,
+    ahead: &'a mut Ahead<N>,
 }
 
 impl<const N: usize, R: Rng> State<'_, N, R> {
@@ -430,13 +435,18 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
     fn grow_cached<G: NeighbourGrid<N>, const B: usize>(self, grid: &mut G) -> Option<[f64; N]> {
         let periodic = self.domain.any_periodic();
         let periods = self.domain.periods();
+        let ahead = self.candidates.reads_ahead();
         while !self.active.is_empty() {
             let i = below(self.rng, self.active.len());
             let parent = *self.active.get(i)?;
             let mut state = self.candidates.start(self.rng);
             let mut blockers = Blockers::<N, B>::new();
             for _ in 0..self.attempts {
-                let offset = self.candidates.offset(self.rng, &mut state);
+                let offset = if ahead {
+                    self.ahead.next(self.candidates, self.rng)
+                } else {
+                    self.candidates.offset(self.rng, &mut state)
+                };
                 let mut candidate = add(&parent, &offset);
                 if !self.domain.wrap(&mut candidate) {
                     continue;
