@@ -87,12 +87,14 @@
 //!   feature).
 //!
 //! # Performance
-//! In 2-D and 3-D the dense grid stores points inline in cells of side
-//! `r/√N` and checks a precomputed, nearest-first list of neighbour cells,
-//! so most rejected candidates cost one or two cache-resident distance
-//! checks. From 5-D up (or when the dense grid would exceed the memory
-//! budget) a sparse hash grid is used, whose memory grows with the number of
-//! points. `README.md` has measured throughput against a textbook
+//! Up to 4-D the dense grid has cells of side `r/√N`, each holding the index
+//! of at most one point, and checks a precomputed, nearest-first list of
+//! neighbour cells. Each pick also remembers the few points that rejected
+//! its candidates and checks those first, which settles most attempts
+//! without the grid, and 2-D and 3-D candidates are drawn without rejection,
+//! several ahead. From 5-D up (or when the dense grid would exceed the
+//! memory budget) a sparse hash grid is used, whose memory grows with the
+//! number of points. `README.md` has measured throughput against a textbook
 //! implementation.
 #![doc(test(attr(deny(warnings))))]
 // No panics on user input: library code neither unwraps nor indexes

@@ -188,6 +188,10 @@ impl TiledBuilder {
     /// `1e-150 ..= 1e150`, if no spacing was given, or if exact mode asks
     /// for 0 points per pixel; [`Error::ZeroAttempts`]
     /// if `k == 0`; [`Error::GridTooLarge`] if the window exceeds its budget.
+    /// The window's row and cell counts are bounded too, so a radius above
+    /// about `1.25e8` pixels, or below about `2.2e-5` (more than 65 536 cells
+    /// per pixel), gives [`Error::GridTooLarge`] with `needed: u64::MAX`
+    /// whatever the budget, even on a 1 × 1 raster.
     pub fn build(self) -> Result<Tiled, Error> {
         if self.width == 0 {
             return Err(Error::EmptyBox { axis: 0 });
