@@ -120,6 +120,24 @@ impl<const N: usize> Domain<N> {
             .all(|(x, (lo, hi))| lo <= x && x < hi)
     }
 
+    /// Whether every point within `reach` of `p` is inside the box, so that
+    /// [`Self::wrap`] need not run for candidates thrown from `p`. Robust to
+    /// rounding: it also asks for coordinates small against `reach` (under
+    /// `2^40·reach`), so that `p + d` is within `reach·2⁻¹²` of its exact
+    /// value, far inside the margin of `reach` it keeps from every face.
+    #[inline(always)]
+    pub(crate) fn holds_ball(&self, p: &[f64; N], reach: f64) -> bool {
+        const SMALL: f64 = (1u64 << 40) as f64;
+        p.iter()
+            .zip(self.lo.iter().zip(&self.hi))
+            .fold(true, |inside, (&x, (&lo, &hi))| {
+                inside
+                    & (x - lo >= 2.0 * reach)
+                    & (hi - x >= 2.0 * reach)
+                    & (x.abs() <= SMALL * reach)
+            })
+    }
+
     /// Maps a coordinate that left the box on a periodic axis back into it,
     /// and reports whether the point now lies inside. Bounded axes are only
     /// checked, never moved.
@@ -185,5 +203,34 @@ mod tests {
         // -1e-300 + 1 rounds to exactly 1 = hi: must be rejected, not kept.
         let mut edge = [-1e-300, 0.5];
         assert!(!d.wrap(&mut edge), "rounding onto hi is rejected");
+    }
+
+    #[test]
+    fn a_held_ball_keeps_every_near_point_inside() {
+        use crate::random::{seeded_rng, symmetric_pair};
+        // Parents all over a box (also far from the origin, where rounding
+        // is coarse) and offsets up to just over 2r: whenever the ball test
+        // passes, parent + offset lies inside.
+        let r = 0.01;
+        let mut rng = seeded_rng(8);
+        for (lo, hi) in [([0.0, 0.0], [1.0, 1.0]), ([1e6, -3.0], [1e6 + 1.0, -2.0])] {
+            let d = Domain::new(lo, hi).unwrap();
+            let mut held = 0;
+            for _ in 0..20_000 {
+                let (a, b) = symmetric_pair(&mut rng);
+                let p = [lo[0] + (a + 1.0) / 2.0, lo[1] + (b + 1.0) / 2.0];
+                if !d.holds_ball(&p, 2.0 * r) {
+                    continue;
+                }
+                held += 1;
+                let (u, v) = symmetric_pair(&mut rng);
+                let q = [p[0] + u * 2.0 * r * 1.01, p[1] + v * 2.0 * r * 1.01];
+                assert!(d.contains(&q), "{p:?} + offset = {q:?}");
+            }
+            assert!(held > 10_000, "most parents are interior: {held}");
+        }
+        // Coordinates huge against r: never held, whatever the margins.
+        let far = Domain::new([1e12], [1e12 + 1.0]).unwrap();
+        assert!(!far.holds_ball(&[1e12 + 0.5], 1e-3), "coarse coordinates");
     }
 }
