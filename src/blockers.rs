@@ -2,11 +2,12 @@
 //! point: a tiny cache checked before the grid.
 //!
 //! Most of Bridson's attempts fail, and the attempts around one active point
-//! keep failing on the same few neighbours (about 5 in 2-D, 9 in 3-D). So
-//! each pick remembers the points its grid searches found, and checks a new
-//! candidate against them first, all slots at once without a branch; only
-//! a candidate they do not block goes to the grid. This caught 70 % of all
-//! attempts in 2-D and 40 % in 3-D, and made the 2-D sampler 1.6× faster.
+//! keep failing on the same few neighbours. So each pick starts with the
+//! active point's nearest neighbours from the grid (the points of its
+//! stencil), adds every point a grid search returns, and
+//! checks each new candidate against them first, all slots at once without
+//! a branch; only a candidate they do not block goes to the grid. Of 36
+//! attempts per point, the cache settles 33 in 2-D and 29 in 3-D.
 //!
 //! It changes no decision: a remembered point is a real point, compared by
 //! the same formula as in the grid, so "blocked" means the grid would have
@@ -114,6 +115,17 @@ mod tests {
                 remembered.push(p);
             }
         }
+    }
+
+    #[test]
+    fn a_full_cache_forgets_the_oldest() {
+        let mut cache = Blockers::<2, 2>::new();
+        for q in [[0.0, 0.0], [5.0, 5.0], [9.0, 9.0]] {
+            cache.push(&q);
+        }
+        assert!(!cache.block(&[0.1, 0.0], 1.0), "oldest forgotten");
+        assert!(cache.block(&[5.1, 5.0], 1.0), "second kept");
+        assert!(cache.block(&[9.1, 9.0], 1.0), "newest kept");
     }
 
     #[test]

@@ -16,6 +16,7 @@
 //! serves toroidal domains.
 
 use super::{DensePlan, NeighbourGrid};
+use crate::blockers::Blockers;
 use crate::domain::Domain;
 use crate::vector::{distance_squared, periodic_distance_squared};
 
@@ -23,6 +24,9 @@ use crate::vector::{distance_squared, periodic_distance_squared};
 /// empty cells hold index 0, so a scan never branches on emptiness.
 const FAR: f64 = f64::INFINITY;
 const EMPTY: u32 = 0;
+/// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
+/// about 14 points in its 125 cells; the cache keeps at most 16).
+const SEED_MAX: usize = 32;
 
 #[derive(Debug)]
 pub(crate) struct Dense<const N: usize> {
@@ -43,6 +47,8 @@ pub(crate) struct Dense<const N: usize> {
     /// Linear offsets of the cells that can hold a point closer than `r`,
     /// nearest first so that a conflict is usually found in the first few.
     offsets: Vec<isize>,
+    /// The stencil without the centre cell, in address order (up to 3-D).
+    seed_offsets: Vec<isize>,
     periods: [f64; N],
     any_periodic: bool,
     radius_squared: f64,
@@ -67,6 +73,12 @@ impl<const N: usize> Dense<N> {
         points.try_reserve(1024).ok()?;
         points.push([FAR; N]);
         let offsets = stencil(plan, &stride, radius)?;
+        let mut seed_offsets: Vec<isize> = if N <= 3 {
+            offsets.iter().copied().filter(|&o| o != 0).collect()
+        } else {
+            Vec::new()
+        };
+        seed_offsets.sort_unstable();
         Some(Self {
             cells,
             points,
@@ -79,6 +91,7 @@ impl<const N: usize> Dense<N> {
             stride,
             pad_base,
             offsets,
+            seed_offsets,
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
             radius_squared: radius * radius,
@@ -201,6 +214,38 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
     }
 
+    /// The points of the stencil around `p` (its nearest neighbours, the
+    /// ones that block most of its annulus), until the cache is full. Two
+    /// passes, so that the memory loads go out together: the cells in
+    /// address order (each row of the stencil is one or two cache lines),
+    /// collecting the indices of occupied cells without a branch; then
+    /// those points. Up to 3-D only: the 4-D stencil has 841 cells.
+    #[inline(always)]
+    fn seed<const B: usize>(&self, p: &[f64; N], cache: &mut Blockers<N, B>) {
+        if N > 3 {
+            return;
+        }
+        let base = self.base(&self.cell_of(p));
+        let mut found = [EMPTY; SEED_MAX];
+        let mut n = 0;
+        for &off in &self.seed_offsets {
+            let index = self
+                .cells
+                .get(base.wrapping_add_signed(off))
+                .copied()
+                .unwrap_or(EMPTY);
+            if let Some(slot) = found.get_mut(n) {
+                *slot = index;
+            }
+            n += usize::from(index != EMPTY);
+        }
+        for &index in found.iter().take(n.min(B)) {
+            if let Some(q) = self.points.get(index as usize) {
+                cache.push(q);
+            }
+        }
+    }
+
     #[inline(always)]
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
@@ -292,6 +337,24 @@ mod tests {
         assert_eq!(g.offsets[0], 0, "own cell first");
         let g = dense(&Domain::from_extent([1.0; 3]).unwrap(), 0.1);
         assert_eq!(g.offsets.len(), 125, "3-D stencil");
+    }
+
+    #[test]
+    fn seed_gathers_the_nearest_neighbours() {
+        let mut g = dense(&Domain::from_extent([1.0, 1.0]).unwrap(), 0.1);
+        // A point, two neighbours in its stencil, one far away.
+        for p in [[0.5, 0.5], [0.6, 0.5], [0.5, 0.62], [0.9, 0.9]] {
+            assert!(g.insert(p), "insert {p:?}");
+        }
+        let mut cache = Blockers::<2, 8>::new();
+        g.seed(&[0.5, 0.5], &mut cache);
+        assert!(!cache.block(&[0.45, 0.5], 0.01), "not the point itself");
+        assert!(cache.block(&[0.65, 0.5], 0.01), "near the first neighbour");
+        assert!(cache.block(&[0.5, 0.67], 0.01), "near the second");
+        assert!(
+            !cache.block(&[0.9, 0.85], 0.01),
+            "the far point is not cached"
+        );
     }
 
     #[test]

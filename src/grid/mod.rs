@@ -20,6 +20,7 @@
 pub(crate) mod dense;
 pub(crate) mod sparse;
 
+use crate::blockers::Blockers;
 use crate::domain::Domain;
 use crate::error::Error;
 
@@ -83,6 +84,9 @@ pub(crate) trait NeighbourGrid<const N: usize> {
     /// `blockers.rs`). Exact: compares squared distances summed in axis
     /// order.
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]>;
+    /// Puts stored points near `p` into `cache` (up to its capacity `B`),
+    /// where the grid finds them cheaply; by default none.
+    fn seed<const B: usize>(&self, _p: &[f64; N], _cache: &mut Blockers<N, B>) {}
     /// Stores `p`; returns `false` (and stores nothing) if the layout has no
     /// room for it, which the sampler treats as a failed attempt.
     fn insert(&mut self, p: [f64; N]) -> bool;
