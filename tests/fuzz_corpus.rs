@@ -5,6 +5,9 @@
 
 mod common;
 
+#[path = "../fuzz/common/bytes.rs"]
+mod bytes;
+
 #[path = "../fuzz/common/batch.rs"]
 mod batch;
 

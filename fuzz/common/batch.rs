@@ -3,7 +3,8 @@
 //! Plain Rust on std and `bridson` only (no `arbitrary`), so that the
 //! regular test suite replays the committed corpus through exactly the
 //! assertions the fuzzer runs. The including crate must also declare
-//! `mod common;` (the oracle in `tests/common/mod.rs`).
+//! `mod common;` (the oracle in `tests/common/mod.rs`) and `mod bytes;`
+//! (the reader in `fuzz/common/bytes.rs`).
 //!
 //! Every byte string decodes to a full set of sampler inputs: reads past the
 //! end give zeros. Each value has several decodings picked by a few bits, so
@@ -16,6 +17,7 @@
 //! execution stays fast), generated, and every point is checked with the
 //! naive oracle: no pair closer than `r`, every point in `lo <= x < hi`.
 
+use crate::bytes::Bytes;
 use crate::common;
 use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk};
 
@@ -33,46 +35,6 @@ const ATTEMPT_LIMIT: u32 = 64;
 /// grid per execution would make fuzzing crawl. The inputs' own budget is
 /// checked by `build()` first.
 const BUDGET_LIMIT: u64 = 16 << 20;
-
-/// Reads numbers from the fuzz input, little-endian; zeros past the end.
-pub(crate) struct Bytes<'a> {
-    data: &'a [u8],
-}
-
-impl<'a> Bytes<'a> {
-    pub(crate) fn new(data: &'a [u8]) -> Self {
-        Self { data }
-    }
-
-    fn array<const K: usize>(&mut self) -> [u8; K] {
-        let mut out = [0u8; K];
-        let n = K.min(self.data.len());
-        let (head, rest) = self.data.split_at(n);
-        out[..n].copy_from_slice(head);
-        self.data = rest;
-        out
-    }
-
-    pub(crate) fn u8(&mut self) -> u8 {
-        self.array::<1>()[0]
-    }
-
-    pub(crate) fn u16(&mut self) -> u16 {
-        u16::from_le_bytes(self.array())
-    }
-
-    pub(crate) fn u32(&mut self) -> u32 {
-        u32::from_le_bytes(self.array())
-    }
-
-    pub(crate) fn u64(&mut self) -> u64 {
-        u64::from_le_bytes(self.array())
-    }
-
-    pub(crate) fn f64_bits(&mut self) -> f64 {
-        f64::from_bits(self.u64())
-    }
-}
 
 /// Values that sit on or next to a documented limit.
 const SPECIAL: [f64; 24] = [

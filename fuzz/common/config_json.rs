@@ -5,7 +5,7 @@
 //! that keeps the guarantee: it round-trips, its `Builder` form builds to
 //! the same sampler, and its points (capped, with the grid budget lowered
 //! so an execution stays fast) pass the naive oracle. The including crate
-//! must also declare `mod common;` and `mod batch;` (for
+//! must also declare `mod common;`, `mod bytes;` and `mod batch;` (for
 //! `batch::check_generate`).
 
 use crate::batch::check_generate;

@@ -3,9 +3,10 @@
 //!
 //! Plain Rust on std and `bridson` only (no `arbitrary`), so that the
 //! regular test suite replays the committed corpus through exactly the
-//! assertions the fuzzer runs. Self-contained: its own byte reader and its
-//! own naive pair check, no code shared with the library (nor with
-//! `batch.rs`, so the target needs no other module).
+//! assertions the fuzzer runs. It shares the byte reader
+//! (`fuzz/common/bytes.rs`) and the naive oracle (`tests/common/mod.rs`)
+//! with the `batch` target, and no code with the library; the including
+//! crate declares both as `mod bytes;` and `mod common;`.
 //!
 //! Every byte string decodes to a full set of streaming inputs: reads past
 //! the end give zeros. Each value has several decodings picked by a few
@@ -27,6 +28,8 @@
 //! `n` points in every pixel, and the distance only where no top-up dart
 //! was placed, as `TiledBuilder::exact` documents).
 
+use crate::bytes::Bytes;
+use crate::common;
 use bridson::{Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_WINDOW_BYTES, Error, Scheme, Tiled};
 use core::f64::consts::SQRT_2;
 
@@ -50,50 +53,11 @@ const COST_LIMIT: f64 = 3e6;
 const DENSITY_ANNULUS: f64 = 0.62;
 const DENSITY_SPHERE: f64 = 0.88;
 
-/// Reads numbers from the fuzz input, little-endian; zeros past the end.
-struct Bytes<'a> {
-    data: &'a [u8],
-}
-
-impl<'a> Bytes<'a> {
-    fn new(data: &'a [u8]) -> Self {
-        Self { data }
-    }
-
-    fn array<const K: usize>(&mut self) -> [u8; K] {
-        let mut out = [0u8; K];
-        let n = K.min(self.data.len());
-        let (head, rest) = self.data.split_at(n);
-        out[..n].copy_from_slice(head);
-        self.data = rest;
-        out
-    }
-
-    fn u8(&mut self) -> u8 {
-        self.array::<1>()[0]
-    }
-
-    fn u16(&mut self) -> u16 {
-        u16::from_le_bytes(self.array())
-    }
-
-    fn u32(&mut self) -> u32 {
-        u32::from_le_bytes(self.array())
-    }
-
-    fn u64(&mut self) -> u64 {
-        u64::from_le_bytes(self.array())
-    }
-
-    fn f64_bits(&mut self) -> f64 {
-        f64::from_bits(self.u64())
-    }
-
-    /// `lo · (hi / lo)^t`, `t` uniform in `[0, 1]`: log-uniform.
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let t = f64::from(self.u16()) / 65535.0;
-        lo * (hi / lo).powf(t)
-    }
+/// `lo · (hi / lo)^t`, `t` uniform in `[0, 1]` from the next two bytes:
+/// log-uniform.
+fn log_uniform(b: &mut Bytes<'_>, lo: f64, hi: f64) -> f64 {
+    let t = f64::from(b.u16()) / 65535.0;
+    lo * (hi / lo).powf(t)
 }
 
 /// Values that sit on or next to a documented limit, for the radius and
@@ -179,7 +143,7 @@ fn radius(b: &mut Bytes<'_>) -> f64 {
         }
         // Dyadic, 1/8 to 4 pixels: pixel and cell borders hit exactly.
         3 => 2f64.powi(2 - i32::from(b.u8() % 6)),
-        _ => b.log_uniform(0.1, 4.0),
+        _ => log_uniform(b, 0.1, 4.0),
     }
 }
 
@@ -188,7 +152,7 @@ fn per_pixel(b: &mut Bytes<'_>) -> f64 {
         0 => b.f64_bits(),
         1 => special(b),
         2 => 2f64.powi(i32::from(b.u8() % 8) - 3),
-        _ => b.log_uniform(0.05, 16.0),
+        _ => log_uniform(b, 0.05, 16.0),
     }
 }
 
@@ -498,24 +462,6 @@ fn plan(inputs: &Inputs, r: f64) -> Option<(u64, u32)> {
     Some((pixels, k))
 }
 
-/// The first pair `(i, j, d²)` closer than `r`: the naive O(n²) check,
-/// `d² = (a0 - b0)² + (a1 - b1)²` in axis order, a pair violates iff
-/// `d² < r²` (exactly the crate's documented guarantee).
-fn too_close(points: &[[f64; 2]], r: f64) -> Option<(usize, usize, f64)> {
-    let r2 = r * r;
-    for (j, b) in points.iter().enumerate() {
-        for (i, a) in points.iter().enumerate().take(j) {
-            let d0 = a[0] - b[0];
-            let d1 = a[1] - b[1];
-            let d2 = d0 * d0 + d1 * d1;
-            if d2 < r2 {
-                return Some((i, j, d2));
-            }
-        }
-    }
-    None
-}
-
 /// Pulls `pixels` pixels of `tiled` and checks them, and the union.
 fn check_stream(ctx: &str, inputs: &Inputs, tiled: &Tiled, pixels: u64) {
     let (w, h) = (u64::from(inputs.width), u64::from(inputs.height));
@@ -574,8 +520,13 @@ fn check_stream(ctx: &str, inputs: &Inputs, tiled: &Tiled, pixels: u64) {
         inputs.exact.is_some() || top_ups == 0,
         "{ctx}: {top_ups} top-ups outside exact mode"
     );
+    // The oracle's plain (non-periodic) distance: `d² = (a0 - b0)² +
+    // (a1 - b1)²` in axis order, a pair violates iff `d² < r²`.
+    let raster = [f64::from(inputs.width), f64::from(inputs.height)];
     if top_ups == 0
-        && let Some((i, j, d2)) = too_close(&union, tiled.radius())
+        && let Some(&(i, j, d2)) =
+            common::min_distance_violations(&union, tiled.radius(), [0.0; 2], raster, [false; 2])
+                .first()
     {
         panic!(
             "{ctx}: of {} points, #{i} {:?} and #{j} {:?} are closer than r: d² = {d2:e}, r² = {:e}",

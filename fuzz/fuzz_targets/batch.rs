@@ -5,6 +5,9 @@
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
+#[path = "../common/bytes.rs"]
+mod bytes;
+
 #[path = "../common/batch.rs"]
 mod batch;
 

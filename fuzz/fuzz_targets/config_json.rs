@@ -5,6 +5,10 @@
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
+#[path = "../common/bytes.rs"]
+#[allow(dead_code, reason = "only batch.rs's decoding uses it")]
+mod bytes;
+
 #[path = "../common/batch.rs"]
 #[allow(dead_code, reason = "only batch::check_generate is used here")]
 mod batch;

@@ -2,6 +2,12 @@
 //! `fuzz/common/streaming.rs`.
 #![no_main]
 
+#[path = "../../tests/common/mod.rs"]
+mod common;
+
+#[path = "../common/bytes.rs"]
+mod bytes;
+
 #[path = "../common/streaming.rs"]
 mod streaming;
 
