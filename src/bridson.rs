@@ -286,6 +286,7 @@ impl<const N: usize> PoissonDisk<N> {
             remaining: c.max_points.unwrap_or(u64::MAX),
             started: false,
             ahead: Ahead::new(),
+            next_pick: None,
         }
     }
 
@@ -324,6 +325,9 @@ pub struct Iter<const N: usize, R> {
     remaining: u64,
     started: bool,
     ahead: Ahead<N>,
+    /// The index of the next pick, drawn during the one before (see
+    /// [`State::grow_cached`]).
+    next_pick: Option<usize>,
 }
 
 impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
@@ -343,6 +347,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 radius_squared,
                 attempts,
                 ahead,
+                next_pick,
                 ..
             } = self;
             let state = State {
@@ -353,6 +358,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 radius_squared: *radius_squared,
                 attempts: *attempts,
                 ahead,
+                next_pick,
             };
             match grid {
                 Grid::Dense(g) => state.grow(g),
@@ -407,6 +413,7 @@ struct State<'a, const N: usize, R> {
     radius_squared: f64,
     attempts: u32,
     ahead: &'a mut Ahead<N>,
+    next_pick: &'a mut Option<usize>,
 }
 
 impl<const N: usize, R: Rng> State<'_, N, R> {
@@ -437,8 +444,22 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
         let ahead = self.candidates.reads_ahead();
         let reach = 2.0 * self.radius_squared.sqrt();
         while !self.active.is_empty() {
-            let i = below(self.rng, self.active.len());
+            let len = self.active.len();
+            // The pick is drawn one pick ahead, so that its cells can be
+            // fetched from memory while this pick runs: uniform over
+            // `0..len + 1` then, and `len + 1` bounds the list's length now
+            // (one pick adds or removes one entry). Kept if it is below the
+            // length, redrawn otherwise: either way uniform over `0..len`.
+            let i = match self.next_pick.take() {
+                Some(i) if i < len => i,
+                _ => below(self.rng, len),
+            };
             let parent = *self.active.get(i)?;
+            let next = below(self.rng, len + 1);
+            *self.next_pick = Some(next);
+            if let Some(p) = self.active.get(next) {
+                grid.prefetch(p);
+            }
             let mut state = self.candidates.start(self.rng);
             let mut blockers = Blockers::<N, B>::new();
             grid.seed(&parent, &mut blockers);

@@ -49,6 +49,11 @@ pub(crate) struct Dense<const N: usize> {
     offsets: Vec<isize>,
     /// The stencil without the centre cell, in address order (up to 3-D).
     seed_offsets: Vec<isize>,
+    /// The first cell of each row (along axis 0) of the stencil, up to 3-D:
+    /// what [`NeighbourGrid::prefetch`] asks for.
+    row_offsets: Vec<isize>,
+    /// Cells after the first in a stencil row: `2·pad[0]`.
+    row_last: usize,
     periods: [f64; N],
     any_periodic: bool,
     radius_squared: f64,
@@ -79,6 +84,21 @@ impl<const N: usize> Dense<N> {
             Vec::new()
         };
         seed_offsets.sort_unstable();
+        // The stencil row by row (up to 3-D), for `prefetch`: offset `o` is
+        // `d0 + Σ d_i·stride_i` with |d0| <= reach0 < stride_1 / 2, so its
+        // row starts at `o - (o + reach0) mod stride_1`.
+        let reach0 = isize::try_from(pad.first().copied().unwrap_or(0)).ok()?;
+        let row_stride = isize::try_from(stride.get(1).copied().unwrap_or(usize::MAX)).ok();
+        let mut row_offsets: Vec<isize> = if N <= 3 {
+            offsets
+                .iter()
+                .map(|&o| row_stride.map_or(-reach0, |s| o - (o + reach0).rem_euclid(s)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        row_offsets.sort_unstable();
+        row_offsets.dedup();
         Some(Self {
             cells,
             points,
@@ -92,6 +112,8 @@ impl<const N: usize> Dense<N> {
             pad_base,
             offsets,
             seed_offsets,
+            row_offsets,
+            row_last: 2 * pad.first().copied().unwrap_or(0),
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
             radius_squared: radius * radius,
@@ -246,6 +268,22 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
     }
 
+    /// Asks for the stencil around `p` row by row: each row is at most two
+    /// cache lines (20 bytes in 3-D), so its first and last cells cover it.
+    /// Up to 3-D, as [`seed`](Self::seed).
+    #[inline(always)]
+    fn prefetch(&self, p: &[f64; N]) {
+        if N > 3 {
+            return;
+        }
+        let base = self.base(&self.cell_of(p));
+        for &off in &self.row_offsets {
+            let first = base.wrapping_add_signed(off);
+            crate::prefetch::prefetch(&self.cells, first);
+            crate::prefetch::prefetch(&self.cells, first + self.row_last);
+        }
+    }
+
     #[inline(always)]
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
@@ -337,6 +375,23 @@ mod tests {
         assert_eq!(g.offsets[0], 0, "own cell first");
         let g = dense(&Domain::from_extent([1.0; 3]).unwrap(), 0.1);
         assert_eq!(g.offsets.len(), 125, "3-D stencil");
+    }
+
+    #[test]
+    fn stencil_rows_cover_the_stencil() {
+        fn check<const N: usize>(g: &Dense<N>) {
+            let last = isize::try_from(g.row_last).unwrap();
+            for &o in &g.offsets {
+                let rows = g.row_offsets.iter();
+                let n = rows.filter(|&&r| (r..=r + last).contains(&o)).count();
+                assert_eq!(n, 1, "offset {o} lies in {n} rows");
+            }
+            let expected = g.offsets.len() / (g.row_last + 1);
+            assert_eq!(g.row_offsets.len(), expected, "{N}-D row count");
+        }
+        check(&dense(&Domain::from_extent([1.0]).unwrap(), 0.1));
+        check(&dense(&Domain::from_extent([1.0, 2.0]).unwrap(), 0.1));
+        check(&dense(&Domain::from_extent([1.0, 0.5, 3.0]).unwrap(), 0.07));
     }
 
     #[test]

@@ -87,6 +87,9 @@ pub(crate) trait NeighbourGrid<const N: usize> {
     /// Puts stored points near `p` into `cache` (up to its capacity `B`),
     /// where the grid finds them cheaply; by default none.
     fn seed<const B: usize>(&self, _p: &[f64; N], _cache: &mut Blockers<N, B>) {}
+    /// Starts loading the cells [`seed`](Self::seed) will read around `p`;
+    /// a hint only, by default nothing.
+    fn prefetch(&self, _p: &[f64; N]) {}
     /// Stores `p`; returns `false` (and stores nothing) if the layout has no
     /// room for it, which the sampler treats as a failed attempt.
     fn insert(&mut self, p: [f64; N]) -> bool;
