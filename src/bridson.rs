@@ -286,7 +286,7 @@ impl<const N: usize> PoissonDisk<N> {
             remaining: c.max_points.unwrap_or(u64::MAX),
             started: false,
             ahead: Ahead::new(),
-            next_pick: None,
+            next_pick: [None; 2],
         }
     }
 
@@ -325,9 +325,9 @@ pub struct Iter<const N: usize, R> {
     remaining: u64,
     started: bool,
     ahead: Ahead<N>,
-    /// The index of the next pick, drawn during the one before (see
+    /// The indices of the next two picks, drawn ahead (see
     /// [`State::grow_cached`]).
-    next_pick: Option<usize>,
+    next_pick: [Option<usize>; 2],
 }
 
 impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
@@ -413,7 +413,7 @@ struct State<'a, const N: usize, R> {
     radius_squared: f64,
     attempts: u32,
     ahead: &'a mut Ahead<N>,
-    next_pick: &'a mut Option<usize>,
+    next_pick: &'a mut [Option<usize>; 2],
 }
 
 impl<const N: usize, R: Rng> State<'_, N, R> {
@@ -445,19 +445,23 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
         let reach = 2.0 * self.radius_squared.sqrt();
         while !self.active.is_empty() {
             let len = self.active.len();
-            // The pick is drawn one pick ahead, so that its cells can be
-            // fetched from memory while this pick runs: uniform over
-            // `0..len + 1` then, and `len + 1` bounds the list's length now
-            // (one pick adds or removes one entry). Kept if it is below the
-            // length, redrawn otherwise: either way uniform over `0..len`.
-            let i = match self.next_pick.take() {
+            // Picks are drawn two picks ahead, so that memory is fetched
+            // while earlier picks run: the active entry of the pick after
+            // next, and the stencil of the next one. Each is uniform over
+            // `0..len + 2` when drawn, and `len + 2` bounds the list's length
+            // when it is used (a pick adds or removes one entry). Kept if it
+            // is below the length, redrawn otherwise: either way uniform
+            // over `0..len`.
+            let [now, soon] = *self.next_pick;
+            let i = match now {
                 Some(i) if i < len => i,
                 _ => below(self.rng, len),
             };
             let parent = *self.active.get(i)?;
-            let next = below(self.rng, len + 1);
-            *self.next_pick = Some(next);
-            if let Some(p) = self.active.get(next) {
+            let later = below(self.rng, len + 2);
+            *self.next_pick = [soon, Some(later)];
+            crate::prefetch::prefetch(self.active, later);
+            if let Some(p) = soon.and_then(|j| self.active.get(j)) {
                 grid.prefetch(p);
             }
             let mut state = self.candidates.start(self.rng);

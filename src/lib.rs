@@ -93,9 +93,9 @@
 //! with its active point's neighbours and adding each point that rejects a
 //! candidate, and checks it first: that settles over 90 % of attempts in
 //! 2-D without a grid search. 2-D and 3-D candidates are drawn without
-//! rejection, several ahead. Each pick is drawn one pick early, so that
-//! its neighbourhood is fetched from memory while the current pick runs
-//! (a cache hint: the crate's one `unsafe` block). From 5-D up (or when the dense grid would exceed the
+//! rejection, several ahead. Each pick is drawn two picks early, so that
+//! its neighbourhood is fetched from memory while earlier picks run (a
+//! cache hint: the crate's one `unsafe` block). From 5-D up (or when the dense grid would exceed the
 //! memory budget) a sparse hash grid is used, whose memory grows with the
 //! number of points. `README.md` has measured throughput against a textbook
 //! implementation.
