@@ -50,7 +50,7 @@ pub(crate) struct Dense<const N: usize> {
     /// The stencil without the centre cell, in address order (up to 3-D).
     seed_offsets: Vec<isize>,
     /// The first cell of each row (along axis 0) of the stencil, up to 3-D:
-    /// what [`NeighbourGrid::prefetch`] asks for.
+    /// what `prefetch_stencil` asks for.
     row_offsets: Vec<isize>,
     /// Cells after the first in a stencil row: `2·pad[0]`.
     row_last: usize,
@@ -151,6 +151,21 @@ impl<const N: usize> Dense<N> {
         self.index(cell) + self.pad_base
     }
 
+    /// Asks for the stencil around cell `base` row by row: each row is at
+    /// most two cache lines (20 bytes in 3-D), so its first and last cells
+    /// cover it. Up to 3-D, as [`NeighbourGrid::seed`].
+    #[inline(always)]
+    fn prefetch_stencil(&self, base: usize) {
+        if N > 3 {
+            return;
+        }
+        for &off in &self.row_offsets {
+            let first = base.wrapping_add_signed(off);
+            crate::prefetch::prefetch(&self.cells, first);
+            crate::prefetch::prefetch(&self.cells, first.wrapping_add(self.row_last));
+        }
+    }
+
     #[inline(always)]
     fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> Option<[f64; N]> {
         for &off in &self.offsets {
@@ -229,6 +244,10 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     #[inline(always)]
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let base = self.base(&self.cell_of(p));
+        // Ask for the whole stencil first: the scan exits at the first
+        // conflict, but a candidate that gets this far often has none
+        // nearby, and then every row is read.
+        self.prefetch_stencil(base);
         if self.any_periodic {
             self.scan::<true>(base, p)
         } else {
@@ -268,20 +287,9 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
     }
 
-    /// Asks for the stencil around `p` row by row: each row is at most two
-    /// cache lines (20 bytes in 3-D), so its first and last cells cover it.
-    /// Up to 3-D, as [`seed`](Self::seed).
     #[inline(always)]
     fn prefetch(&self, p: &[f64; N]) {
-        if N > 3 {
-            return;
-        }
-        let base = self.base(&self.cell_of(p));
-        for &off in &self.row_offsets {
-            let first = base.wrapping_add_signed(off);
-            crate::prefetch::prefetch(&self.cells, first);
-            crate::prefetch::prefetch(&self.cells, first + self.row_last);
-        }
+        self.prefetch_stencil(self.base(&self.cell_of(p)));
     }
 
     #[inline(always)]
