@@ -453,10 +453,7 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
             // is below the length, redrawn otherwise: either way uniform
             // over `0..len`.
             let [now, soon] = *self.next_pick;
-            let i = match now {
-                Some(i) if i < len => i,
-                _ => below(self.rng, len),
-            };
+            let i = kept(now, len).unwrap_or_else(|| below(self.rng, len));
             let parent = *self.active.get(i)?;
             let later = below(self.rng, len + 2);
             *self.next_pick = [soon, Some(later)];
@@ -504,6 +501,13 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
     }
 }
 
+/// A pick index drawn ahead, uniform over `0..bound` with `bound >= len`
+/// independently of how the list changed since: kept if below `len`, else
+/// `None` (draw again). Either way the pick is uniform over `0..len`.
+fn kept(drawn: Option<usize>, len: usize) -> Option<usize> {
+    drawn.filter(|&i| i < len)
+}
+
 /// A uniform point in the half-open box. Rounding can carry `lo + u·L` up
 /// to `hi`; such draws are repeated (at most 64 times, then `lo` is used).
 fn first_point<const N: usize, R: Rng + ?Sized>(domain: &Domain<N>, rng: &mut R) -> [f64; N] {
@@ -521,6 +525,33 @@ fn first_point<const N: usize, R: Rng + ?Sized>(domain: &Domain<N>, rng: &mut R)
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Exact law of a pick drawn ahead: uniform over `0..drawn_over`, kept
+    /// if below `len`, else redrawn uniform over `0..len`. Every index below
+    /// `len` must get probability `1/len`, that is (times `drawn_over·len`)
+    /// `len` for keeping it plus one for each redraw.
+    #[test]
+    fn picks_drawn_ahead_stay_uniform() {
+        for old_len in 1..40usize {
+            let drawn_over = old_len + 2;
+            for len in old_len.saturating_sub(2).max(1)..=drawn_over {
+                let redraws = (0..drawn_over)
+                    .filter(|&i| kept(Some(i), len).is_none())
+                    .count();
+                for j in 0..len {
+                    let keeps = (0..drawn_over)
+                        .filter(|&i| kept(Some(i), len) == Some(j))
+                        .count();
+                    assert_eq!(
+                        keeps * len + redraws,
+                        drawn_over,
+                        "drawn over 0..{drawn_over}, used at length {len}: index {j}"
+                    );
+                }
+            }
+        }
+        assert_eq!(kept(None, 5), None, "nothing drawn: draw now");
+    }
 
     #[test]
     fn cap_stops_the_stream() {
