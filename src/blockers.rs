@@ -17,50 +17,108 @@
 /// Far away: a slot holding it never blocks anything.
 const FAR: f64 = f64::INFINITY;
 
+/// What the quick test accepts as surely closer than `r`: a squared distance
+/// below `1 - 2⁻¹²` in units of `r²`. Its rounding error is far smaller
+/// (see [`Blockers::block`]); a pair in between is left to the exact grid
+/// search.
+const SURELY_INSIDE: f32 = 1.0 - 1.0 / 4096.0;
+
 /// The last `B` points found closer than `r` to a candidate around the
 /// current active point, stored axis-major so that one check runs over all
 /// slots at once without a branch.
+///
+/// Each point is kept twice: exactly (`f64`, for toroidal distances) and
+/// relative to the active point in units of `r` as `f32`, for the quick
+/// test of bounded domains, which then runs four slots to a vector
+/// instead of two.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Blockers<const N: usize, const B: usize> {
     coords: [[f64; B]; N],
+    near: [[f32; B]; N],
+    origin: [f64; N],
+    inv_radius: f64,
     next: usize,
 }
 
 impl<const N: usize, const B: usize> Blockers<N, B> {
-    pub(crate) const fn new() -> Self {
+    /// An empty cache for the candidates around `origin` (the active
+    /// point), for radius `r`.
+    pub(crate) fn new(origin: [f64; N], radius: f64) -> Self {
         Self {
             coords: [[FAR; B]; N],
+            near: [[f32::INFINITY; B]; N],
+            origin,
+            inv_radius: 1.0 / radius,
             next: 0,
         }
+    }
+
+    /// `p - origin` in units of `r`, as `f32`.
+    #[inline(always)]
+    fn relative(&self, p: &[f64; N]) -> [f32; N] {
+        let mut out = [0.0; N];
+        for ((o, &x), &c) in out.iter_mut().zip(p).zip(&self.origin) {
+            #[expect(
+                clippy::cast_possible_truncation,
+                reason = "f32 on purpose: the quick test has a margin"
+            )]
+            let v = ((x - c) * self.inv_radius) as f32;
+            *o = v;
+        }
+        out
     }
 
     /// Remembers `q`, forgetting the oldest entry when full.
     #[inline(always)]
     pub(crate) fn push(&mut self, q: &[f64; N]) {
         let slot = self.next;
-        for (column, &x) in self.coords.iter_mut().zip(q) {
-            if let Some(c) = column.get_mut(slot) {
+        let near = self.relative(q);
+        let columns = self.coords.iter_mut().zip(&mut self.near);
+        for ((column, column_near), (&x, &y)) in columns.zip(q.iter().zip(&near)) {
+            if let (Some(c), Some(n)) = (column.get_mut(slot), column_near.get_mut(slot)) {
                 *c = x;
+                *n = y;
             }
         }
         self.next = if slot + 1 >= B { 0 } else { slot + 1 };
     }
 
-    /// Whether some remembered point is closer than `r` to `p`, with the
-    /// squared distance summed in axis order (so exactly as the grid decides).
+    /// Whether some remembered point is surely closer than `r` to `p`: then
+    /// the exact test (`f64`, squares summed in axis order, as the grid
+    /// decides) says so too. A point within about `r·2⁻¹³` of distance `r`
+    /// may not count; the caller's grid search then decides exactly.
+    ///
+    /// Why the `f32` test cannot err the other way: the points checked here
+    /// lie within a few `r` of `origin` (the cache holds the active point's
+    /// neighbours and the conflicts of its candidates, thrown at most
+    /// `2r·(1 + 10⁻⁷)` away). An `f64` difference `x - c` of two such
+    /// coordinates is exact when they are within a factor of two of each
+    /// other (Sterbenz) and otherwise both are below a few `r` in
+    /// magnitude, so its error is at most a few `r·2⁻⁵³`. Scaling and the
+    /// cast to `f32` add `2⁻²⁴` relative on values below about 4; the `f32`
+    /// difference, square and sum add a few `2⁻²⁴` relative each. The
+    /// squared distance near 1 (in units of `r²`) is thus off by well under
+    /// `N·2⁻¹⁸`, far below the `2⁻¹²` margin for every `N` the crate runs
+    /// (the sum's error grows with `N`: past 64 axes the exact test is used).
     #[inline(always)]
     pub(crate) fn block(&self, p: &[f64; N], radius_squared: f64) -> bool {
-        let mut d2 = [0.0; B];
-        for (&x, column) in p.iter().zip(&self.coords) {
+        if N > 64 {
+            return self.block_periodic(p, radius_squared, &[0.0; N]);
+        }
+        let rel = self.relative(p);
+        let mut d2 = [0.0f32; B];
+        for (&x, column) in rel.iter().zip(&self.near) {
             for (acc, &y) in d2.iter_mut().zip(column) {
                 let d = x - y;
                 *acc += d * d;
             }
         }
-        d2.iter().fold(false, |hit, &d| hit | (d < radius_squared))
+        d2.iter().fold(false, |hit, &d| hit | (d < SURELY_INSIDE))
     }
 
-    /// [`Self::block`] with toroidal differences on axes with a period.
+    /// Whether some remembered point is closer than `r` to `p` with
+    /// toroidal differences (period `0.0`: plain) on axes with a period, summed in axis order in
+    /// `f64` (exactly as the grid decides).
     #[inline(always)]
     pub(crate) fn block_periodic(
         &self,
@@ -85,26 +143,39 @@ impl<const N: usize, const B: usize> Blockers<N, B> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::random::{seeded_rng, symmetric_pair};
+    use crate::random::{seeded_rng, symmetric_pair, unit};
     use crate::vector::{distance_squared, periodic_distance_squared};
 
     #[test]
     fn agrees_with_the_distance_formula() {
-        // Remembered points and probes in [-1, 1)², r = 0.3: the cache says
-        // "blocked" exactly when one of the last B points is closer than r,
-        // in plain and toroidal distance alike.
-        let (r2, periods) = (0.09, [2.0, 0.0]);
+        // Remembered points and probes in [-1, 1)², r = 0.3, around the
+        // origin: "blocked" only when one of the last B points is closer
+        // than r, and always when one is clearly closer (the quick test's
+        // band is 2⁻¹²); toroidal distances exactly.
+        let (r, periods) = (0.3, [2.0, 0.0]);
+        let r2 = r * r;
         let mut rng = seeded_rng(12);
-        let mut cache = Blockers::<2, 4>::new();
+        let mut cache = Blockers::<2, 4>::new([0.0, 0.0], r);
         let mut remembered: Vec<[f64; 2]> = Vec::new();
+        let (mut blocked, mut clear) = (0, 0);
         for round in 0..2000 {
             let p: [f64; 2] = symmetric_pair(&mut rng).into();
             let recent = &remembered[remembered.len().saturating_sub(4)..];
-            let near = recent.iter().any(|q| distance_squared(&p, q) < r2);
+            let nearest = recent
+                .iter()
+                .map(|q| distance_squared(&p, q))
+                .fold(f64::INFINITY, f64::min);
             let near_periodic = recent
                 .iter()
                 .any(|q| periodic_distance_squared(&p, q, &periods) < r2);
-            assert_eq!(cache.block(&p, r2), near, "round {round}");
+            let quick = cache.block(&p, r2);
+            assert!(!quick || nearest < r2, "round {round}: blocked from afar");
+            assert!(
+                quick || nearest >= r2 * (1.0 - 1.0 / 1024.0),
+                "round {round}: missed a point well inside"
+            );
+            blocked += usize::from(quick);
+            clear += usize::from(nearest >= r2);
             assert_eq!(
                 cache.block_periodic(&p, r2, &periods),
                 near_periodic,
@@ -115,22 +186,63 @@ mod tests {
                 remembered.push(p);
             }
         }
+        assert!(blocked > 200 && clear > 200, "{blocked} blocked, {clear} clear");
+    }
+
+    /// Probes a hair outside `r` (and well inside) of a remembered point,
+    /// at coordinates far larger than `r` and at the radius limits: the
+    /// quick test never blocks a pair the exact formula keeps.
+    #[test]
+    fn never_blocks_at_or_past_r() {
+        fn check<const N: usize>(origin: [f64; N], r: f64, seed: u64) {
+            let mut rng = seeded_rng(seed);
+            for _ in 0..500 {
+                // A remembered point within 2r of the origin, a probe at
+                // distance r·(1 + t) from it, t in ±2⁻²⁰.
+                let dir: [f64; N] = core::array::from_fn(|_| unit(&mut rng) - 0.5);
+                let norm = dir.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let q: [f64; N] = core::array::from_fn(|i| origin[i] + dir[i] * r / norm);
+                let mut cache = Blockers::<N, 8>::new(origin, r);
+                cache.push(&q);
+                let dir2: [f64; N] = core::array::from_fn(|_| unit(&mut rng) - 0.5);
+                let norm2 = dir2.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let t = (unit(&mut rng) - 0.5) * 2f64.powi(-19);
+                let p: [f64; N] =
+                    core::array::from_fn(|i| q[i] + dir2[i] * r * (1.0 + t) / norm2);
+                let exact = distance_squared(&p, &q) < r * r;
+                assert!(
+                    !cache.block(&p, r * r) || exact,
+                    "blocked at distance² {} > r² {}",
+                    distance_squared(&p, &q),
+                    r * r
+                );
+                let inside: [f64; N] =
+                    core::array::from_fn(|i| q[i] + dir2[i] * r * 0.999 / norm2);
+                assert!(cache.block(&inside, r * r), "0.999 r not blocked");
+            }
+        }
+        check([0.3, 0.7], 0.01, 1);
+        check([1e9, -3e9, 7e8], 1e-3, 2);
+        check([1e-140; 3], 1e-150, 3);
+        check([5e150, -1e150], 1e150, 4);
+        check([0.5; 8], 0.2, 5);
+        check([123.25], 0.5, 6);
     }
 
     #[test]
     fn a_full_cache_forgets_the_oldest() {
-        let mut cache = Blockers::<2, 2>::new();
-        for q in [[0.0, 0.0], [5.0, 5.0], [9.0, 9.0]] {
+        let mut cache = Blockers::<2, 2>::new([5.0, 5.0], 0.2);
+        for q in [[4.5, 4.5], [5.0, 5.0], [5.5, 5.5]] {
             cache.push(&q);
         }
-        assert!(!cache.block(&[0.1, 0.0], 1.0), "oldest forgotten");
-        assert!(cache.block(&[5.1, 5.0], 1.0), "second kept");
-        assert!(cache.block(&[9.1, 9.0], 1.0), "newest kept");
+        assert!(!cache.block(&[4.4, 4.5], 0.04), "oldest forgotten");
+        assert!(cache.block(&[5.1, 5.0], 0.04), "second kept");
+        assert!(cache.block(&[5.6, 5.5], 0.04), "newest kept");
     }
 
     #[test]
     fn empty_cache_blocks_nothing() {
-        let cache = Blockers::<3, 8>::new();
+        let cache = Blockers::<3, 8>::new([0.0; 3], 1e150);
         assert!(!cache.block(&[0.0; 3], f64::MAX), "plain");
         assert!(
             !cache.block_periodic(&[0.0; 3], f64::MAX, &[1.0; 3]),

@@ -442,7 +442,8 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
         let periodic = self.domain.any_periodic();
         let periods = self.domain.periods();
         let ahead = self.candidates.reads_ahead();
-        let reach = 2.0 * self.radius_squared.sqrt();
+        let radius = self.radius_squared.sqrt();
+        let reach = 2.0 * radius;
         while !self.active.is_empty() {
             let len = self.active.len();
             // Picks are drawn two picks ahead, so that memory is fetched
@@ -462,7 +463,7 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                 grid.prefetch(p);
             }
             let mut state = self.candidates.start(self.rng);
-            let mut blockers = Blockers::<N, B>::new();
+            let mut blockers = Blockers::<N, B>::new(parent, radius);
             grid.seed(&parent, &mut blockers);
             // Far from every face (the usual case), no candidate can leave
             // the box: skip the per-attempt test. Candidates lie within

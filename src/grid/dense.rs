@@ -44,16 +44,19 @@ pub(crate) struct Dense<const N: usize> {
     stride: [usize; N],
     /// Linear index of the first cell inside the box: `Σ pad[i]·stride[i]`.
     pad_base: usize,
-    /// Linear offsets of the cells that can hold a point closer than `r`,
-    /// nearest first so that a conflict is usually found in the first few.
-    offsets: Vec<isize>,
-    /// The stencil without the centre cell, in address order (up to 3-D).
+    /// The search stencil of a whole cell: every cell that can hold a
+    /// point closer than `r` to a point of the centre cell. The seed and the
+    /// pick's prefetch use it.
+    full: Stencil,
+    /// The stencils of the parts of a cell ([`parts`] per axis, part `Σ
+    /// k_i·parts^i`): a candidate is searched with the stencil of the part
+    /// it lies in, which leaves out the cells that only the rest of its
+    /// cell can reach (3-D: 90 cells on average instead of 125; 2-D: 16
+    /// instead of 25).
+    parts: Vec<Stencil>,
+    /// The full stencil without the centre cell, in address order (up to
+    /// 3-D).
     seed_offsets: Vec<isize>,
-    /// The first cell of each row (along axis 0) of the stencil, up to 3-D:
-    /// what `prefetch_stencil` asks for.
-    row_offsets: Vec<isize>,
-    /// Cells after the first in a stencil row: `2·pad[0]`.
-    row_last: usize,
     periods: [f64; N],
     any_periodic: bool,
     radius_squared: f64,
@@ -77,28 +80,25 @@ impl<const N: usize> Dense<N> {
         let mut points = Vec::new();
         points.try_reserve(1024).ok()?;
         points.push([FAR; N]);
-        let offsets = stencil(plan, &stride, radius)?;
+        let full = Stencil::new(plan, &stride, radius, &[0; N], 1)?;
         let mut seed_offsets: Vec<isize> = if N <= 3 {
-            offsets.iter().copied().filter(|&o| o != 0).collect()
+            full.offsets.iter().copied().filter(|&o| o != 0).collect()
         } else {
             Vec::new()
         };
         seed_offsets.sort_unstable();
-        // The stencil row by row (up to 3-D), for `prefetch`: offset `o` is
-        // `d0 + Σ d_i·stride_i` with |d0| <= reach0 < stride_1 / 2, so its
-        // row starts at `o - (o + reach0) mod stride_1`.
-        let reach0 = isize::try_from(pad.first().copied().unwrap_or(0)).ok()?;
-        let row_stride = isize::try_from(stride.get(1).copied().unwrap_or(usize::MAX)).ok();
-        let mut row_offsets: Vec<isize> = if N <= 3 {
-            offsets
-                .iter()
-                .map(|&o| row_stride.map_or(-reach0, |s| o - (o + reach0).rem_euclid(s)))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        row_offsets.sort_unstable();
-        row_offsets.dedup();
+        let count = parts(N).checked_pow(u32::try_from(N).ok()?)?;
+        let mut stencils = Vec::new();
+        stencils.try_reserve_exact(count).ok()?;
+        for k in 0..count {
+            let mut part = [0; N];
+            let mut rest = k;
+            for p in &mut part {
+                *p = rest % parts(N);
+                rest /= parts(N);
+            }
+            stencils.push(Stencil::new(plan, &stride, radius, &part, parts(N))?);
+        }
         Some(Self {
             cells,
             points,
@@ -110,10 +110,9 @@ impl<const N: usize> Dense<N> {
             pad,
             stride,
             pad_base,
-            offsets,
+            full,
+            parts: stencils,
             seed_offsets,
-            row_offsets,
-            row_last: 2 * pad.first().copied().unwrap_or(0),
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
             radius_squared: radius * radius,
@@ -151,24 +150,59 @@ impl<const N: usize> Dense<N> {
         self.index(cell) + self.pad_base
     }
 
-    /// Asks for the stencil around cell `base` row by row: each row is at
-    /// most two cache lines (20 bytes in 3-D), so its first and last cells
-    /// cover it. Up to 3-D, as [`NeighbourGrid::seed`].
+    /// The cell of a candidate, and the part of it ([`parts`] per axis)
+    /// that it lies in. The part is from the same rounded position as the
+    /// cell, so off by no more than the rounding margin the stencils allow.
     #[inline(always)]
-    fn prefetch_stencil(&self, base: usize) {
+    fn locate(&self, p: &[f64; N]) -> ([usize; N], usize) {
+        let mut cell = [0usize; N];
+        let mut part = 0;
+        let mut weight = 1;
+        let axes = self.lo.iter().zip(&self.inv_side).zip(&self.last);
+        for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
+            let t = (x - lo) * inv_side;
+            // As in `cell_of`; then the position inside the cell, clamped
+            // (rounding or the clamp at `hi` can leave it a hair outside).
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                clippy::cast_precision_loss,
+                reason = "saturating float-to-int casts, clamped; cells <= 2^40 convert exactly"
+            )]
+            let (i, k) = {
+                let i = ((t as i64).max(0) as usize).min(last);
+                let k = (((t - i as f64) * parts(N) as f64) as i64).clamp(0, parts(N) as i64 - 1);
+                (i, k as usize)
+            };
+            *c = i;
+            part += k * weight;
+            weight *= parts(N);
+        }
+        (cell, part)
+    }
+
+    /// Asks for the cells of `stencil` around cell `base`, row by row: the
+    /// first and last cell of each row (at most 20 bytes in 3-D, so at most
+    /// two cache lines). Up to 3-D, as [`NeighbourGrid::seed`].
+    #[inline(always)]
+    fn prefetch_stencil(&self, base: usize, stencil: &Stencil) {
         if N > 3 {
             return;
         }
-        for &off in &self.row_offsets {
-            let first = base.wrapping_add_signed(off);
-            crate::prefetch::prefetch(&self.cells, first);
-            crate::prefetch::prefetch(&self.cells, first.wrapping_add(self.row_last));
+        for &[first, last] in &stencil.rows {
+            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(first));
+            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(last));
         }
     }
 
     #[inline(always)]
-    fn scan<const PERIODIC: bool>(&self, base: usize, p: &[f64; N]) -> Option<[f64; N]> {
-        for &off in &self.offsets {
+    fn scan<const PERIODIC: bool>(
+        &self,
+        base: usize,
+        stencil: &Stencil,
+        p: &[f64; N],
+    ) -> Option<[f64; N]> {
+        for &off in &stencil.offsets {
             // Always Some: the padding is as wide as the largest offset.
             let Some(&index) = self.cells.get(base.wrapping_add_signed(off)) else {
                 continue;
@@ -243,15 +277,17 @@ impl<const N: usize> Dense<N> {
 impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     #[inline(always)]
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
-        let base = self.base(&self.cell_of(p));
+        let (cell, part) = self.locate(p);
+        let base = self.base(&cell);
+        let stencil = self.parts.get(part).unwrap_or(&self.full);
         // Ask for the whole stencil first: the scan exits at the first
         // conflict, but a candidate that gets this far often has none
         // nearby, and then every row is read.
-        self.prefetch_stencil(base);
+        self.prefetch_stencil(base, stencil);
         if self.any_periodic {
-            self.scan::<true>(base, p)
+            self.scan::<true>(base, stencil, p)
         } else {
-            self.scan::<false>(base, p)
+            self.scan::<false>(base, stencil, p)
         }
     }
 
@@ -289,7 +325,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
 
     #[inline(always)]
     fn prefetch(&self, p: &[f64; N]) {
-        self.prefetch_stencil(self.base(&self.cell_of(p)));
+        self.prefetch_stencil(self.base(&self.cell_of(p)), &self.full);
     }
 
     #[inline(always)]
@@ -318,47 +354,113 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     }
 }
 
-/// Linear offsets of every cell `d` with `Σ (max(|d_i| - 1 - η, 0)·side_i)²
-/// < r²`: all cells that can hold a point closer than `r` to a point of the
-/// centre cell, even with each index off by the rounding margin `η`.
-fn stencil<const N: usize>(
-    plan: &DensePlan<N>,
-    stride: &[usize; N],
-    radius: f64,
-) -> Option<Vec<isize>> {
-    let r2 = radius * radius;
-    let reach: [isize; N] = plan.reach.map(|p| isize::try_from(p).unwrap_or(0));
-    let stride: [isize; N] = stride.map(|s| isize::try_from(s).unwrap_or(0));
-    let mut cells = Vec::new();
-    let mut d = reach.map(|p| -p);
-    loop {
-        let mut gap2 = 0.0;
-        let mut centre2 = 0.0;
-        for (&di, &side) in d.iter().zip(&plan.side) {
-            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
-            let a = di.unsigned_abs() as f64;
-            let gap = (a - 1.0 - plan.eta).max(0.0) * side;
-            gap2 += gap * gap;
-            centre2 += (a * side) * (a * side);
-        }
-        if gap2 < r2 {
-            let linear: isize = d.iter().zip(&stride).map(|(d, s)| d * s).sum();
-            cells.push((gap2, centre2, linear));
-        }
-        // Odometer over -reach..=reach on every axis.
-        let mut stepped = false;
-        for (x, &p) in d.iter_mut().zip(&reach) {
-            if *x < p {
-                *x += 1;
-                stepped = true;
+/// How many parts each axis of a cell is cut into for the search stencils,
+/// in `n` dimensions:
+/// 2 up to 4-D (16 stencils of up to 841 cells there); whole cells above,
+/// where `2^N` stencils of thousands of cells would cost more memory than
+/// they save scanning.
+const fn parts(n: usize) -> usize {
+    if n <= 4 { 2 } else { 1 }
+}
+
+/// The cells a candidate in one part of its cell must be checked against.
+#[derive(Debug)]
+struct Stencil {
+    /// Linear offsets, nearest first, so that a conflict is usually found
+    /// in the first few.
+    offsets: Vec<isize>,
+    /// The first and last offset of each row along axis 0 (up to 3-D): what
+    /// [`Dense::prefetch_stencil`] asks for.
+    rows: Vec<[isize; 2]>,
+}
+
+impl Stencil {
+    /// The cells `d` with `Σ (max(gap_i - η, 0)·side_i)² < r²`, where
+    /// `gap_i` is the distance, in cells, between part `part` of the centre
+    /// cell (`[k/parts, (k+1)/parts]` on each axis) and cell `d`: every
+    /// cell that can hold a point closer than `r` to a point of that part,
+    /// even with each index off by the rounding margin `η`. With one part
+    /// this is Bridson's stencil, `gap_i = |d_i| - 1`.
+    fn new<const N: usize>(
+        plan: &DensePlan<N>,
+        stride: &[usize; N],
+        radius: f64,
+        part: &[usize; N],
+        parts: usize,
+    ) -> Option<Self> {
+        let r2 = radius * radius;
+        let reach: [isize; N] = plan.reach.map(|p| isize::try_from(p).unwrap_or(0));
+        let stride: [isize; N] = stride.map(|s| isize::try_from(s).unwrap_or(0));
+        #[expect(clippy::cast_precision_loss, reason = "small counts")]
+        let (parts_f, part_f) = (parts as f64, part.map(|k| k as f64));
+        let mut cells = Vec::new();
+        let mut d = reach.map(|p| -p);
+        loop {
+            let mut gap2 = 0.0;
+            let mut centre2 = 0.0;
+            for ((&di, &side), &k) in d.iter().zip(&plan.side).zip(&part_f) {
+                let (a, b) = (k / parts_f, (k + 1.0) / parts_f);
+                #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+                let df = di as f64;
+                let gap = if di >= 1 {
+                    df - b
+                } else if di <= -1 {
+                    a - (df + 1.0)
+                } else {
+                    0.0
+                };
+                let gap = (gap - plan.eta).max(0.0) * side;
+                gap2 += gap * gap;
+                // From the part's centre to the cell's: the tie-break.
+                let centre = (df + 0.5 - 0.5 * (a + b)) * side;
+                centre2 += centre * centre;
+            }
+            if gap2 < r2 {
+                let linear: isize = d.iter().zip(&stride).map(|(d, s)| d * s).sum();
+                cells.push((gap2, centre2, linear));
+            }
+            // Odometer over -reach..=reach on every axis.
+            let mut stepped = false;
+            for (x, &p) in d.iter_mut().zip(&reach) {
+                if *x < p {
+                    *x += 1;
+                    stepped = true;
+                    break;
+                }
+                *x = -p;
+            }
+            if !stepped {
                 break;
             }
-            *x = -p;
         }
-        if !stepped {
-            cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-            return Some(cells.into_iter().map(|c| c.2).collect());
+        cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        let offsets: Vec<isize> = cells.into_iter().map(|c| c.2).collect();
+        // Rows (up to 3-D): offset `o` is `d0 + Σ d_i·stride_i` with
+        // |d0| <= reach0 < stride_1 / 2, so its row is keyed by
+        // `o - (o + reach0) mod stride_1`.
+        let mut rows: Vec<(isize, isize)> = Vec::new();
+        if N <= 3 {
+            let reach0 = reach.first().copied().unwrap_or(0);
+            let row_stride = stride.get(1).copied();
+            rows = offsets
+                .iter()
+                .map(|&o| (row_stride.map_or(-reach0, |s| o - (o + reach0).rem_euclid(s)), o))
+                .collect();
+            rows.sort_unstable();
         }
+        let mut grouped: Vec<[isize; 2]> = Vec::new();
+        let mut last_key = None;
+        for (key, o) in rows {
+            match grouped.last_mut() {
+                Some(row) if last_key == Some(key) => row[1] = o,
+                _ => grouped.push([o, o]),
+            }
+            last_key = Some(key);
+        }
+        Some(Self {
+            offsets,
+            rows: grouped,
+        })
     }
 }
 
@@ -379,27 +481,95 @@ mod tests {
         // 2-D: the 5×5 block; the four corners are kept because they sit
         // exactly at distance r, where rounding matters.
         let g = dense(&Domain::from_extent([1.0, 1.0]).unwrap(), 0.1);
-        assert_eq!(g.offsets.len(), 25, "2-D stencil");
-        assert_eq!(g.offsets[0], 0, "own cell first");
+        assert_eq!(g.full.offsets.len(), 25, "2-D stencil");
+        assert_eq!(g.full.offsets[0], 0, "own cell first");
         let g = dense(&Domain::from_extent([1.0; 3]).unwrap(), 0.1);
-        assert_eq!(g.offsets.len(), 125, "3-D stencil");
+        assert_eq!(g.full.offsets.len(), 125, "3-D stencil");
+        // The parts' stencils: 8 in 3-D, each inside the full one, own
+        // cell first, together smaller by about a quarter.
+        assert_eq!(g.parts.len(), 8, "3-D parts");
+        for part in &g.parts {
+            assert_eq!(part.offsets[0], 0, "own cell first");
+            assert!(part.offsets.iter().all(|o| g.full.offsets.contains(o)));
+        }
+        let total: usize = g.parts.iter().map(|p| p.offsets.len()).sum();
+        assert!(total <= 8 * 100, "3-D parts hold {total} cells");
     }
 
     #[test]
     fn stencil_rows_cover_the_stencil() {
         fn check<const N: usize>(g: &Dense<N>) {
-            let last = isize::try_from(g.row_last).unwrap();
-            for &o in &g.offsets {
-                let rows = g.row_offsets.iter();
-                let n = rows.filter(|&&r| (r..=r + last).contains(&o)).count();
-                assert_eq!(n, 1, "offset {o} lies in {n} rows");
+            let row = isize::try_from(2 * g.pad[0]).unwrap();
+            for stencil in g.parts.iter().chain([&g.full]) {
+                for &o in &stencil.offsets {
+                    let rows = stencil.rows.iter();
+                    let n = rows.filter(|r| (r[0]..=r[1]).contains(&o)).count();
+                    assert_eq!(n, 1, "offset {o} lies in {n} rows");
+                }
+                for r in &stencil.rows {
+                    assert!((0..=row).contains(&(r[1] - r[0])), "{N}-D row {r:?}");
+                }
             }
-            let expected = g.offsets.len() / (g.row_last + 1);
-            assert_eq!(g.row_offsets.len(), expected, "{N}-D row count");
+            let expected = g.full.offsets.len() / (2 * g.pad[0] + 1);
+            assert_eq!(g.full.rows.len(), expected, "{N}-D row count");
         }
         check(&dense(&Domain::from_extent([1.0]).unwrap(), 0.1));
         check(&dense(&Domain::from_extent([1.0, 2.0]).unwrap(), 0.1));
         check(&dense(&Domain::from_extent([1.0, 0.5, 3.0]).unwrap(), 0.07));
+    }
+
+    /// The search with the parts' stencils finds a conflict exactly when a
+    /// brute-force check over every stored point does, for candidates all
+    /// over their cells: on cell faces, on the faces between parts, a hair
+    /// either side of them, and at random.
+    #[test]
+    fn conflicts_agree_with_brute_force() {
+        fn check<const N: usize>(domain: Domain<N>, r: f64, seed: u64) {
+            let mut g = dense(&domain, r);
+            let mut rng = crate::random::seeded_rng(seed);
+            let mut stored: Vec<[f64; N]> = Vec::new();
+            let side = g.inv_side.map(|s| 1.0 / s);
+            let counts = g.counts;
+            // A position on one axis: a cell face, a part face, a hair off
+            // one, or uniform.
+            let coordinate = |axis: usize, rng: &mut crate::random::DefaultRng| {
+                let u = crate::random::unit(rng);
+                let cell = (u * counts[axis] as f64).floor();
+                let kind = (crate::random::unit(rng) * 6.0) as u32;
+                let frac = match kind {
+                    0 => 0.0,
+                    1 => 0.5,
+                    2 => 0.5 - 1e-12,
+                    3 => 1.0 - 1e-12,
+                    4 => 1e-12,
+                    _ => crate::random::unit(rng),
+                };
+                let x = domain.lo()[axis] + (cell + frac) * side[axis];
+                x.clamp(domain.lo()[axis], domain.hi()[axis] - side[axis] * 1e-9)
+            };
+            let (mut hits, mut misses) = (0, 0);
+            for _ in 0..4000 {
+                let p: [f64; N] = core::array::from_fn(|axis| coordinate(axis, &mut rng));
+                let brute = stored
+                    .iter()
+                    .any(|q| distance_squared(&p, q) < r * r);
+                assert_eq!(g.conflict(&p).is_some(), brute, "{p:?}");
+                if brute {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                    if g.insert(p) {
+                        stored.push(p);
+                    }
+                }
+            }
+            assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
+        }
+        check(Domain::from_extent([1.0, 1.0]).unwrap(), 0.05, 1);
+        check(Domain::new([-3.0, 1e6], [-2.0, 1e6 + 0.7]).unwrap(), 0.04, 2);
+        check(Domain::from_extent([1.0, 0.8, 0.6]).unwrap(), 0.1, 3);
+        check(Domain::from_extent([1.0; 4]).unwrap(), 0.3, 4);
+        check(Domain::from_extent([1.0]).unwrap(), 0.001, 5);
     }
 
     #[test]
@@ -409,7 +579,7 @@ mod tests {
         for p in [[0.5, 0.5], [0.6, 0.5], [0.5, 0.62], [0.9, 0.9]] {
             assert!(g.insert(p), "insert {p:?}");
         }
-        let mut cache = Blockers::<2, 8>::new();
+        let mut cache = Blockers::<2, 8>::new([0.5, 0.5], 0.1);
         g.seed(&[0.5, 0.5], &mut cache);
         assert!(!cache.block(&[0.45, 0.5], 0.01), "not the point itself");
         assert!(cache.block(&[0.65, 0.5], 0.01), "near the first neighbour");
