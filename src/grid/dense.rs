@@ -27,6 +27,8 @@ const EMPTY: u32 = 0;
 /// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
 /// about 14 points in its 125 cells; the cache keeps at most 16).
 const SEED_MAX: usize = 32;
+/// Cells a search looks up before checking the points they hold.
+const SCAN_CHUNK: usize = 16;
 
 #[derive(Debug)]
 pub(crate) struct Dense<const N: usize> {
@@ -202,21 +204,35 @@ impl<const N: usize> Dense<N> {
         stencil: &Stencil,
         p: &[f64; N],
     ) -> Option<[f64; N]> {
-        for &off in &stencil.offsets {
-            // Always Some: the padding is as wide as the largest offset.
-            let Some(&index) = self.cells.get(base.wrapping_add_signed(off)) else {
-                continue;
-            };
-            let Some(q) = self.points.get(index as usize) else {
-                continue;
-            };
-            let d2 = if PERIODIC {
-                periodic_distance_squared(p, q, &self.periods)
-            } else {
-                distance_squared(p, q)
-            };
-            if d2 < self.radius_squared {
-                return Some(*q);
+        // In chunks, nearest first: the occupied cells' indices without a
+        // branch (most cells are empty), then only those points.
+        for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
+            let mut found = [EMPTY; SCAN_CHUNK];
+            let mut n = 0;
+            for &off in chunk {
+                // Always Some: the padding is as wide as the largest offset.
+                let index = self
+                    .cells
+                    .get(base.wrapping_add_signed(off))
+                    .copied()
+                    .unwrap_or(EMPTY);
+                if let Some(slot) = found.get_mut(n) {
+                    *slot = index;
+                }
+                n += usize::from(index != EMPTY);
+            }
+            for &index in found.iter().take(n) {
+                let Some(q) = self.points.get(index as usize) else {
+                    continue;
+                };
+                let d2 = if PERIODIC {
+                    periodic_distance_squared(p, q, &self.periods)
+                } else {
+                    distance_squared(p, q)
+                };
+                if d2 < self.radius_squared {
+                    return Some(*q);
+                }
             }
         }
         None
