@@ -27,8 +27,11 @@ const EMPTY: u32 = 0;
 /// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
 /// about 14 points in its 125 cells; the cache keeps at most 16).
 const SEED_MAX: usize = 32;
-/// Cells a search looks up before checking the points they hold.
-const SCAN_CHUNK: usize = 16;
+/// Cells a search looks up before checking the points they hold. 8 ran the
+/// fewest instructions (cachegrind, 100 000 points in 3-D: 1.96 G with 4,
+/// 1.92 G with 8, 1.98 G with 16, 2.10 G with 32; in 2-D 8 and 4 tie and
+/// 16 is 4 % worse): larger chunks look up cells past the conflict.
+const SCAN_CHUNK: usize = 8;
 
 #[derive(Debug)]
 pub(crate) struct Dense<const N: usize> {
