@@ -161,7 +161,9 @@ impl<const N: usize> CandidateSampler<N> {
         )]
         if N == 2 {
             let words: [u64; AHEAD] = core::array::from_fn(|_| rng.next_u64());
-            let rho = words.map(|x| self.radius * (1.0 + 3.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32)).sqrt());
+            let rho = words.map(|x| {
+                self.radius * (1.0 + 3.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32)).sqrt()
+            });
             let (c, s) = angle_directions(&words.map(|x| x as u32));
             for (((d, rho), c), s) in out.iter_mut().zip(&rho).zip(&c).zip(&s) {
                 if let [x, y] = d.as_mut_slice() {
@@ -176,7 +178,8 @@ impl<const N: usize> CandidateSampler<N> {
                 *w = rng.next_u64();
             }
             let rho = x.map(|x| {
-                self.radius * cube_root_1_to_8(1.0 + 7.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32))
+                self.radius
+                    * cube_root_1_to_8(1.0 + 7.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32))
             });
             let z = x.map(|x| f64::from(x as u32 as i32) * (2.0 * TWO_POW_M32));
             let (c, s) = angle_directions(&w.map(|w| (w >> 32) as u32));

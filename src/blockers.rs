@@ -186,7 +186,10 @@ mod tests {
                 remembered.push(p);
             }
         }
-        assert!(blocked > 200 && clear > 200, "{blocked} blocked, {clear} clear");
+        assert!(
+            blocked > 200 && clear > 200,
+            "{blocked} blocked, {clear} clear"
+        );
     }
 
     /// Probes a hair outside `r` (and well inside) of a remembered point,
@@ -207,8 +210,7 @@ mod tests {
                 let dir2: [f64; N] = core::array::from_fn(|_| unit(&mut rng) - 0.5);
                 let norm2 = dir2.iter().map(|x| x * x).sum::<f64>().sqrt();
                 let t = (unit(&mut rng) - 0.5) * 2f64.powi(-19);
-                let p: [f64; N] =
-                    core::array::from_fn(|i| q[i] + dir2[i] * r * (1.0 + t) / norm2);
+                let p: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * (1.0 + t) / norm2);
                 let exact = distance_squared(&p, &q) < r * r;
                 assert!(
                     !cache.block(&p, r * r) || exact,
@@ -216,8 +218,7 @@ mod tests {
                     distance_squared(&p, &q),
                     r * r
                 );
-                let inside: [f64; N] =
-                    core::array::from_fn(|i| q[i] + dir2[i] * r * 0.999 / norm2);
+                let inside: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * 0.999 / norm2);
                 assert!(cache.block(&inside, r * r), "0.999 r not blocked");
             }
         }
