@@ -8,7 +8,10 @@
 //! ```
 //!
 //! Each case runs in a fresh child process, so its peak RSS (`VmHWM`, Linux
-//! only) is its own. The reported time is the median of the runs.
+//! only) is its own. The runs go round by round (every selected case once,
+//! then again), so that a slow spell of a shared host falls on all cases
+//! rather than on whichever ran then. The reported time is the median of
+//! a case's runs.
 
 #[path = "../benches/textbook/mod.rs"]
 mod textbook;
@@ -180,15 +183,20 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    println!("k = {K}, seed {SEED}, unit box, median of {runs} runs, one process per run");
+    println!(
+        "k = {K}, seed {SEED}, unit box, median of {runs} interleaved runs, one process per run"
+    );
     println!(
         "{:<18} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9}",
         "case", "points", "seconds", "Mpoints/s", "rho", "peak MiB", "vs text"
     );
-    let mut baseline: Option<(usize, f64)> = None;
-    for case in CASES.iter().filter(|c| c.name.starts_with(only.as_str())) {
-        let mut samples = Vec::new();
-        for _ in 0..runs {
+    let cases: Vec<&Case> = CASES
+        .iter()
+        .filter(|c| c.name.starts_with(only.as_str()))
+        .collect();
+    let mut all: Vec<Vec<(f64, f64, f64, f64)>> = vec![Vec::new(); cases.len()];
+    for _ in 0..runs {
+        for (case, samples) in cases.iter().zip(&mut all) {
             let out = Command::new(&exe).args(["--child", case.name]).output();
             let Ok(out) = out else {
                 eprintln!("throughput: could not start a child");
@@ -210,6 +218,9 @@ fn main() -> ExitCode {
                 return ExitCode::from(1);
             }
         }
+    }
+    let mut baseline: Option<(usize, f64)> = None;
+    for (case, mut samples) in cases.into_iter().zip(all) {
         samples.sort_by(|a, b| a.1.total_cmp(&b.1));
         let (count, seconds, rho, rss) = samples[samples.len() / 2];
         let rate = count / seconds;

@@ -89,7 +89,7 @@
 //! # Performance
 //! Up to 4-D the dense grid has cells of side `r/√N`, each holding the index
 //! of at most one point, and checks a precomputed, nearest-first list of
-//! neighbour cells. Each pick also keeps a small cache of points, starting
+//! the neighbour cells within reach of the half-cell the candidate lies in. Each pick also keeps a small cache of points, starting
 //! with its active point's neighbours and adding each point that rejects a
 //! candidate, and checks it first: that settles over 90 % of attempts in
 //! 2-D without a grid search. 2-D and 3-D candidates are drawn without

@@ -4,8 +4,9 @@
 //! set; the cell stores that point's `u32` index into the point vector, whose
 //! slot 0 is a sentinel at infinity that every empty cell points to. A
 //! neighbour check is then a run over a precomputed list of linear cell
-//! offsets, nearest first, with no branch on emptiness: an empty cell is
-//! infinitely far. (Storing the coordinates inline in the cells was as fast
+//! offsets, nearest first, for the half-cell the candidate lies in: eight
+//! cells' indices at a time without a branch, then the points of the
+//! occupied ones. (Storing the coordinates inline in the cells was as fast
 //! and took 3.5× the memory in 3-D, where 89 % of cells are empty: 222 MB
 //! against 63 MB peak for a million points.)
 //!
