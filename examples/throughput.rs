@@ -11,7 +11,9 @@
 //! only) is its own. The runs go round by round (every selected case once,
 //! then again), so that a slow spell of a shared host falls on all cases
 //! rather than on whichever ran then. The reported time is the median of
-//! a case's runs.
+//! a case's runs; "vs text" is the ratio of the medians, "paired" the
+//! median over rounds of each round's ratio (a case's run against the
+//! textbook's run of the same round, minutes apart at most).
 
 #[path = "../benches/textbook/mod.rs"]
 mod textbook;
@@ -187,8 +189,8 @@ fn main() -> ExitCode {
         "k = {K}, seed {SEED}, unit box, median of {runs} interleaved runs, one process per run"
     );
     println!(
-        "{:<18} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9}",
-        "case", "points", "seconds", "Mpoints/s", "rho", "peak MiB", "vs text"
+        "{:<18} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9} {:>9}",
+        "case", "points", "seconds", "Mpoints/s", "rho", "peak MiB", "vs text", "paired"
     );
     let cases: Vec<&Case> = CASES
         .iter()
@@ -219,27 +221,39 @@ fn main() -> ExitCode {
             }
         }
     }
-    let mut baseline: Option<(usize, f64)> = None;
-    for (case, mut samples) in cases.into_iter().zip(all) {
-        samples.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let (count, seconds, rho, rss) = samples[samples.len() / 2];
+    // The textbook's runs of the dimension, in round order, for the paired
+    // ratios: round i of a case against round i of its textbook.
+    let mut baseline: Option<(usize, f64, Vec<f64>)> = None;
+    for (case, samples) in cases.into_iter().zip(all) {
+        let rates: Vec<f64> = samples.iter().map(|s| s.0 / s.1).collect();
+        let mut sorted = samples.clone();
+        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (count, seconds, rho, rss) = sorted[sorted.len() / 2];
         let rate = count / seconds;
         if matches!(case.what, What::Textbook) {
-            baseline = Some((case.dim, rate));
+            baseline = Some((case.dim, rate, rates.clone()));
         }
-        let ratio = match baseline {
-            Some((dim, base)) if dim == case.dim => format!("{:.2}x", rate / base),
-            _ => "-".into(),
+        let (ratio, paired) = match &baseline {
+            Some((dim, base, base_rates)) if *dim == case.dim => {
+                let mut each: Vec<f64> = rates.iter().zip(base_rates).map(|(r, b)| r / b).collect();
+                each.sort_by(f64::total_cmp);
+                (
+                    format!("{:.2}x", rate / base),
+                    format!("{:.2}x", each[each.len() / 2]),
+                )
+            }
+            _ => ("-".into(), "-".into()),
         };
         println!(
-            "{:<18} {:>9} {:>9.3} {:>10.3} {:>7.4} {:>10.1} {:>9}",
+            "{:<18} {:>9} {:>9.3} {:>10.3} {:>7.4} {:>10.1} {:>9} {:>9}",
             case.name,
             count,
             seconds,
             rate / 1e6,
             rho,
             rss,
-            ratio
+            ratio,
+            paired
         );
     }
     ExitCode::SUCCESS
