@@ -205,6 +205,10 @@ impl<const N: usize> CandidateSampler<N> {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Ahead<const N: usize> {
     offsets: [[f64; N]; AHEAD],
+    /// The same offsets in units of `r`, as `f32`: the quick cache check's
+    /// candidate position relative to the active point (see
+    /// `Blockers::block_relative`), computed here eight at a time.
+    units: [[f32; N]; AHEAD],
     used: usize,
 }
 
@@ -215,24 +219,38 @@ impl<const N: usize> Ahead<N> {
     pub(crate) const fn new() -> Self {
         Self {
             offsets: [[0.0; N]; AHEAD],
+            units: [[0.0; N]; AHEAD],
             used: AHEAD,
         }
     }
 
-    /// The next offset, drawing [`AHEAD`] more when all are used.
+    /// The next offset, and the same in units of `r` as `f32`, drawing
+    /// [`AHEAD`] more when all are used.
     #[inline(always)]
     pub(crate) fn next<R: Rng + ?Sized>(
         &mut self,
         sampler: &CandidateSampler<N>,
         rng: &mut R,
-    ) -> [f64; N] {
+    ) -> ([f64; N], [f32; N]) {
         if self.used >= AHEAD {
             sampler.fill_direct_annulus(rng, &mut self.offsets);
+            let inv_radius = 1.0 / sampler.radius;
+            for (unit, offset) in self.units.iter_mut().zip(&self.offsets) {
+                for (u, &o) in unit.iter_mut().zip(offset) {
+                    #[expect(
+                        clippy::cast_possible_truncation,
+                        reason = "f32 on purpose: the quick check has a margin"
+                    )]
+                    let v = (o * inv_radius) as f32;
+                    *u = v;
+                }
+            }
             self.used = 0;
         }
         let offset = self.offsets.get(self.used).copied().unwrap_or([0.0; N]);
+        let unit = self.units.get(self.used).copied().unwrap_or([f32::NAN; N]);
         self.used += 1;
-        offset
+        (offset, unit)
     }
 }
 

@@ -23,6 +23,11 @@ const FAR: f64 = f64::INFINITY;
 /// search.
 const SURELY_INSIDE: f32 = 1.0 - 1.0 / 4096.0;
 
+/// Up to this many radii from the origin (`2²⁸`), a candidate is its offset
+/// from the active point to within `2⁻²⁵·r` per axis, well inside what
+/// [`Blockers::block_relative`] allows.
+pub(crate) const NEAR_ORIGIN: f64 = 268_435_456.0;
+
 /// The last `B` points found closer than `r` to a candidate around the
 /// current active point, stored axis-major so that one check runs over all
 /// slots at once without a branch.
@@ -105,7 +110,18 @@ impl<const N: usize, const B: usize> Blockers<N, B> {
         if N > 64 {
             return self.block_periodic(p, radius_squared, &[0.0; N]);
         }
-        let rel = self.relative(p);
+        self.block_relative(&self.relative(p))
+    }
+
+    /// [`Self::block`] for a candidate given by its position relative to
+    /// `origin` in units of `r`, as `f32`. The caller vouches that `rel` is
+    /// within `2⁻²⁰` per axis of the candidate's `(p - origin) / r`: then
+    /// the argument of [`Self::block`] holds with room to spare. (An offset
+    /// `o` from the active point `c`, scaled: the candidate `fl(c + o)` is
+    /// off from `c + o` by half an ulp of its coordinates, so coordinates
+    /// below `2²⁸·r` keep that under `2⁻²⁵·r`.)
+    #[inline(always)]
+    pub(crate) fn block_relative(&self, rel: &[f32; N]) -> bool {
         let mut d2 = [0.0f32; B];
         for (&x, column) in rel.iter().zip(&self.near) {
             for (acc, &y) in d2.iter_mut().zip(column) {
@@ -228,6 +244,44 @@ mod tests {
         check([5e150, -1e150], 1e150, 4);
         check([0.5; 8], 0.2, 5);
         check([123.25], 0.5, 6);
+    }
+
+    /// [`Blockers::block_relative`] with the candidate given as its offset
+    /// from the active point in units of r (what the sampler passes when
+    /// coordinates are below 2²⁸·r): never blocks a pair the exact formula
+    /// keeps, at coordinates up to the limit.
+    #[test]
+    fn offsets_as_positions_never_block_at_or_past_r() {
+        fn check<const N: usize>(scale: f64, r: f64, seed: u64) {
+            let mut rng = seeded_rng(seed);
+            let direction = |rng: &mut crate::random::DefaultRng| -> [f64; N] {
+                let d: [f64; N] = core::array::from_fn(|_| unit(rng) - 0.5);
+                let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+                d.map(|x| x / norm)
+            };
+            for _ in 0..500 {
+                let origin: [f64; N] =
+                    core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * scale * r);
+                let mut cache = Blockers::<N, 8>::new(origin, r);
+                let offset = direction(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
+                let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
+                #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
+                let rel = offset.map(|o| (o * (1.0 / r)) as f32);
+                let t = (unit(&mut rng) - 0.5) * 2f64.powi(-18);
+                let toward = direction(&mut rng);
+                let q: [f64; N] =
+                    core::array::from_fn(|i| candidate[i] + toward[i] * r * (1.0 + t));
+                cache.push(&q);
+                let exact = distance_squared(&candidate, &q) < r * r;
+                assert!(!cache.block_relative(&rel) || exact, "blocked past r");
+            }
+        }
+        // Coordinates up to the sampler's limit, NEAR_ORIGIN radii.
+        let limit = NEAR_ORIGIN;
+        check::<2>(limit, 1e-3, 7);
+        check::<3>(limit, 0.25, 8);
+        check::<2>(10.0, 1e-150, 9);
+        check::<3>(1.0, 1e150, 10);
     }
 
     #[test]

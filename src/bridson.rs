@@ -2,7 +2,7 @@
 //! lazily as an iterator.
 
 use crate::annulus::{Ahead, CandidateSampler, Candidates};
-use crate::blockers::Blockers;
+use crate::blockers::{Blockers, NEAR_ORIGIN};
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -469,11 +469,16 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
             // the box: skip the per-attempt test. Candidates lie within
             // 2r·(1 + 1e-7) of the parent; the test keeps 4r.
             let interior = !periodic && self.domain.holds_ball(&parent, reach);
+            // Coordinates below 2²⁸·r: the candidate is its offset from the
+            // parent to within 2⁻²⁵·r, so the cache takes the offset drawn
+            // ahead in units of r instead of recomputing it
+            // (`Blockers::block_relative`).
+            let near_origin = ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
             for _ in 0..self.attempts {
-                let offset = if ahead {
+                let (offset, unit) = if ahead {
                     self.ahead.next(self.candidates, self.rng)
                 } else {
-                    self.candidates.offset(self.rng, &mut state)
+                    (self.candidates.offset(self.rng, &mut state), [0.0; N])
                 };
                 let mut candidate = add(&parent, &offset);
                 if !interior && !self.domain.wrap(&mut candidate) {
@@ -481,6 +486,8 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                 }
                 let blocked = if periodic {
                     blockers.block_periodic(&candidate, self.radius_squared, &periods)
+                } else if near_origin {
+                    blockers.block_relative(&unit)
                 } else {
                     blockers.block(&candidate, self.radius_squared)
                 };
