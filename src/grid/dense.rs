@@ -206,6 +206,32 @@ impl<const N: usize> Dense<N> {
         }
     }
 
+    /// The indices of the occupied cells among `offsets` around `base`, in
+    /// order, into `found`, without a branch (most cells are empty); returns
+    /// how many there were (those past `M` are dropped).
+    #[inline(always)]
+    fn occupied<const M: usize>(
+        &self,
+        base: usize,
+        offsets: &[isize],
+        found: &mut [u32; M],
+    ) -> usize {
+        let mut n = 0;
+        for &off in offsets {
+            // Always Some: the padding is as wide as the largest offset.
+            let index = self
+                .cells
+                .get(base.wrapping_add_signed(off))
+                .copied()
+                .unwrap_or(EMPTY);
+            if let Some(slot) = found.get_mut(n) {
+                *slot = index;
+            }
+            n += usize::from(index != EMPTY);
+        }
+        n
+    }
+
     #[inline(always)]
     fn scan<const PERIODIC: bool>(
         &self,
@@ -217,19 +243,7 @@ impl<const N: usize> Dense<N> {
         // branch (most cells are empty), then only those points.
         for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
             let mut found = [EMPTY; SCAN_CHUNK];
-            let mut n = 0;
-            for &off in chunk {
-                // Always Some: the padding is as wide as the largest offset.
-                let index = self
-                    .cells
-                    .get(base.wrapping_add_signed(off))
-                    .copied()
-                    .unwrap_or(EMPTY);
-                if let Some(slot) = found.get_mut(n) {
-                    *slot = index;
-                }
-                n += usize::from(index != EMPTY);
-            }
+            let n = self.occupied(base, chunk, &mut found);
             for &index in found.iter().take(n) {
                 let Some(q) = self.points.get(index as usize) else {
                     continue;
@@ -329,18 +343,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
         let base = self.base(&self.cell_of(p));
         let mut found = [EMPTY; SEED_MAX];
-        let mut n = 0;
-        for &off in &self.seed_offsets {
-            let index = self
-                .cells
-                .get(base.wrapping_add_signed(off))
-                .copied()
-                .unwrap_or(EMPTY);
-            if let Some(slot) = found.get_mut(n) {
-                *slot = index;
-            }
-            n += usize::from(index != EMPTY);
-        }
+        let n = self.occupied(base, &self.seed_offsets, &mut found);
         for &index in found.iter().take(n.min(B)) {
             if let Some(q) = self.points.get(index as usize) {
                 cache.push(q);
