@@ -224,11 +224,11 @@ fn main() -> ExitCode {
     // The textbook's runs of the dimension, in round order, for the paired
     // ratios: round i of a case against round i of its textbook.
     let mut baseline: Option<(usize, f64, Vec<f64>)> = None;
-    for (case, samples) in cases.into_iter().zip(all) {
+    for (case, mut samples) in cases.into_iter().zip(all) {
+        // In round order, before sorting by time.
         let rates: Vec<f64> = samples.iter().map(|s| s.0 / s.1).collect();
-        let mut sorted = samples.clone();
-        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let (count, seconds, rho, rss) = sorted[sorted.len() / 2];
+        samples.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (count, seconds, rho, rss) = samples[samples.len() / 2];
         let rate = count / seconds;
         if matches!(case.what, What::Textbook) {
             baseline = Some((case.dim, rate, rates.clone()));

@@ -9,10 +9,12 @@
 //! a branch; only a candidate they do not block goes to the grid. Of 36
 //! attempts per point, the cache settles 33 in 2-D and 29 in 3-D.
 //!
-//! It changes no decision: a remembered point is a real point, compared by
-//! the same formula as in the grid, so "blocked" means the grid would have
-//! found a conflict too; and "not blocked" falls through to the full grid
-//! search. The output for a seed is the same with or without the cache.
+//! It changes no decision: a remembered point is a real point, and
+//! "blocked" is said only when the grid's exact test would find it closer
+//! than `r` too (on toroidal domains by that very formula; on bounded ones
+//! by a quick `f32` test with a margin that covers its rounding); anything
+//! else falls through to the full grid search. The output for a seed is the
+//! same with or without the cache.
 
 /// Far away: a slot holding it never blocks anything.
 const FAR: f64 = f64::INFINITY;
@@ -114,7 +116,8 @@ impl<const N: usize, const B: usize> Blockers<N, B> {
     }
 
     /// [`Self::block`] for a candidate given by its position relative to
-    /// `origin` in units of `r`, as `f32`. The caller vouches that `rel` is
+    /// `origin` in units of `r`, as `f32` (up to 64 axes, as
+    /// [`Self::block`]). The caller vouches that `rel` is
     /// within `2⁻²⁰` per axis of the candidate's `(p - origin) / r`: then
     /// the argument of [`Self::block`] holds with room to spare. (An offset
     /// `o` from the active point `c`, scaled: the candidate `fl(c + o)` is
@@ -132,9 +135,10 @@ impl<const N: usize, const B: usize> Blockers<N, B> {
         d2.iter().fold(false, |hit, &d| hit | (d < SURELY_INSIDE))
     }
 
-    /// Whether some remembered point is closer than `r` to `p` with
-    /// toroidal differences (period `0.0`: plain) on axes with a period, summed in axis order in
-    /// `f64` (exactly as the grid decides).
+    /// Whether some remembered point is closer than `r` to `p`, exactly as
+    /// the grid decides: differences in `f64`, toroidal on axes with a
+    /// period (plain where the period is `0.0`), squares summed in axis
+    /// order.
     #[inline(always)]
     pub(crate) fn block_periodic(
         &self,

@@ -473,7 +473,8 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
             // parent to within 2⁻²⁵·r, so the cache takes the offset drawn
             // ahead in units of r instead of recomputing it
             // (`Blockers::block_relative`).
-            let near_origin = ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
+            let near_origin =
+                !periodic && ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
             for _ in 0..self.attempts {
                 let (offset, unit) = if ahead {
                     self.ahead.next(self.candidates, self.rng)

@@ -22,7 +22,8 @@ use crate::domain::Domain;
 use crate::vector::{distance_squared, periodic_distance_squared};
 
 /// Index 0 of `points` is this sentinel, infinitely far from everything:
-/// empty cells hold index 0, so a scan never branches on emptiness.
+/// empty cells hold index 0, so real points are indexed from 1 and an empty
+/// cell needs no flag of its own.
 const FAR: f64 = f64::INFINITY;
 const EMPTY: u32 = 0;
 /// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
@@ -130,23 +131,11 @@ impl<const N: usize> Dense<N> {
         })
     }
 
-    /// Cell of a point inside the box, clamped against rounding at `hi`.
+    /// Cell of a point inside the box, clamped against rounding at `hi`
+    /// ([`Self::locate`] without the part).
     #[inline(always)]
     fn cell_of(&self, p: &[f64; N]) -> [usize; N] {
-        let mut cell = [0usize; N];
-        let axes = self.lo.iter().zip(&self.inv_side).zip(&self.last);
-        for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
-            // Through i64 (one instruction on x86-64; f64 -> usize takes
-            // several), saturating, then clamped into the grid.
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                reason = "saturating float-to-int cast, then clamped into the grid"
-            )]
-            let i = (((x - lo) * inv_side) as i64).max(0) as usize;
-            *c = i.min(last);
-        }
-        cell
+        self.locate(p).0
     }
 
     /// Linear index of a cell in padded coordinates.
@@ -172,8 +161,10 @@ impl<const N: usize> Dense<N> {
         let axes = self.lo.iter().zip(&self.inv_side).zip(&self.last);
         for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
             let t = (x - lo) * inv_side;
-            // As in `cell_of`; then the position inside the cell, clamped
-            // (rounding or the clamp at `hi` can leave it a hair outside).
+            // The cell through i64 (one instruction on x86-64; f64 -> usize
+            // takes several), saturating, then clamped into the grid; then
+            // the position inside the cell, clamped (rounding or the clamp
+            // at `hi` can leave it a hair outside).
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
