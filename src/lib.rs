@@ -95,7 +95,8 @@
 //! 2-D without a grid search. 2-D and 3-D candidates are drawn without
 //! rejection, several ahead. Each pick is drawn two picks early, so that
 //! its neighbourhood is fetched from memory while earlier picks run (a
-//! cache hint: the crate's one `unsafe` block). From 5-D up (or when the dense grid would exceed the
+//! cache hint), and on Linux the grid asks for transparent huge pages (a
+//! paging hint): the crate's two `unsafe` blocks. From 5-D up (or when the dense grid would exceed the
 //! memory budget) a sparse hash grid is used, whose memory grows with the
 //! number of points. `README.md` has measured throughput against a textbook
 //! implementation.
@@ -130,6 +131,7 @@ mod density;
 mod domain;
 mod error;
 mod grid;
+mod huge_pages;
 mod prefetch;
 mod random;
 #[cfg(feature = "serde")]

@@ -1,6 +1,7 @@
 //! A cache hint: start loading memory that a later step will read.
 //!
-//! The one `unsafe` block in the crate. It pays: in 3-D the sampler waits
+//! One of the crate's two `unsafe` blocks (the other is
+//! `huge_pages.rs`). It pays: in 3-D the sampler waits
 //! on memory (random picks land anywhere in a grid of tens of megabytes),
 //! and asking for the next picks' memory while this pick runs took a
 //! million 3-D points from 6.8 s to 5.2 s (ARCHITECTURE.md has the runs).

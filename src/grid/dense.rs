@@ -83,9 +83,22 @@ impl<const N: usize> Dense<N> {
         }
         let mut cells = Vec::new();
         cells.try_reserve_exact(total).ok()?;
+        // Before the first write: pages get their size when first touched.
+        crate::huge_pages::advise(&cells);
         cells.resize(total, EMPTY);
+        // Room for every point the plan allows (its bytes are in the
+        // budget), so that the vector never moves: untouched, the room
+        // costs address space only, and huge pages can back it from the
+        // start. Should so much address space be refused, it grows as
+        // needed instead.
         let mut points = Vec::new();
-        points.try_reserve(1024).ok()?;
+        if points
+            .try_reserve_exact(plan.points.saturating_add(1))
+            .is_err()
+        {
+            points.try_reserve(1024).ok()?;
+        }
+        crate::huge_pages::advise(&points);
         points.push([FAR; N]);
         let full = Stencil::new(plan, &stride, radius, &[0; N], 1)?;
         let mut seed_offsets: Vec<isize> = if N <= 3 {
@@ -365,7 +378,12 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
             Some(slot) if *slot == EMPTY => *slot = index,
             _ => return false,
         }
+        let capacity = self.points.capacity();
         self.points.push(p);
+        if self.points.capacity() != capacity {
+            // Moved to a larger allocation: ask again.
+            crate::huge_pages::advise(&self.points);
+        }
         if self.any_periodic {
             self.write_images(&cell, index);
         }

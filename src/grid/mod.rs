@@ -65,6 +65,9 @@ pub(crate) struct DensePlan<const N: usize> {
     pub(crate) reach: [usize; N],
     pub(crate) eta: f64,
     pub(crate) bytes: u64,
+    /// A bound on the points the grid will store (the packing bound, the
+    /// cells, or the cap), to reserve room for up front.
+    pub(crate) points: usize,
 }
 
 /// Geometry of a sparse grid.
@@ -129,7 +132,11 @@ fn to_f64(n: u64) -> f64 {
 }
 
 /// Dense geometry and size, or the bytes it would need if it cannot exist.
-fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePlan<N>, u64> {
+fn plan_dense<const N: usize>(
+    domain: &Domain<N>,
+    radius: f64,
+    max_points: Option<u64>,
+) -> Result<DensePlan<N>, u64> {
     let extent = domain.extent();
     #[expect(clippy::cast_precision_loss, reason = "N is small")]
     let max_side = radius / (N as f64).sqrt();
@@ -158,9 +165,9 @@ fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePl
             .ok_or(u64::MAX)?;
         total = total.checked_mul(padded).ok_or(u64::MAX)?;
     }
-    // Cells hold u32 indices; the points live in a growing vector, bounded
-    // by the packing bound (and by one per inner cell), doubled for the
-    // vector's growth slack.
+    // Cells hold u32 indices; the points live in a vector bounded by the
+    // packing bound (and by one per inner cell), reserved up front; doubled
+    // for the growth slack should that reservation be refused.
     let cell_bytes = total.checked_mul(4).ok_or(u64::MAX)?;
     let inner: f64 = counts.iter().map(|&m| to_f64(m)).product();
     let points = ln_max_points(domain, radius).exp().min(inner);
@@ -186,12 +193,21 @@ fn plan_dense<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<DensePl
     if cells.contains(&usize::MAX) || usize::try_from(total).is_err() {
         return Err(u64::MAX);
     }
+    // Below u32::MAX (checked above), so it converts exactly.
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "finite, positive and below u32::MAX"
+    )]
+    let bound = points.ceil() as u64;
+    let points = usize::try_from(bound.min(max_points.unwrap_or(u64::MAX))).unwrap_or(usize::MAX);
     Ok(DensePlan {
         cells,
         side,
         reach,
         eta,
         bytes,
+        points,
     })
 }
 
@@ -315,7 +331,7 @@ pub(crate) fn plan<const N: usize>(
             return Err(Error::BoxTooWide { axis });
         }
     }
-    let dense = || plan_dense(domain, radius);
+    let dense = || plan_dense(domain, radius, max_points);
     let sparse = || plan_sparse(domain, radius, max_points);
     let too_large = |needed: u64| Error::GridTooLarge { needed, budget };
     match layout {
@@ -406,11 +422,11 @@ mod tests {
     fn dense_reach_follows_the_dimension() {
         // side = r/√N, so ceil(√N) cells, plus the margin for perfect squares.
         let r = 0.05;
-        let d2 = plan_dense(&Domain::from_extent([1.0; 2]).unwrap(), r).unwrap();
+        let d2 = plan_dense(&Domain::from_extent([1.0; 2]).unwrap(), r, None).unwrap();
         assert_eq!(d2.reach, [2; 2], "2-D");
-        let d3 = plan_dense(&Domain::from_extent([1.0; 3]).unwrap(), r).unwrap();
+        let d3 = plan_dense(&Domain::from_extent([1.0; 3]).unwrap(), r, None).unwrap();
         assert_eq!(d3.reach, [2; 3], "3-D");
-        let d5 = plan_dense(&Domain::from_extent([1.0; 5]).unwrap(), 0.5).unwrap();
+        let d5 = plan_dense(&Domain::from_extent([1.0; 5]).unwrap(), 0.5, None).unwrap();
         assert_eq!(d5.reach, [3; 5], "5-D needs 3 cells, not 2");
         for i in 0..2 {
             assert!(d2.side[i] <= r / 2f64.sqrt(), "side within r/√2");
