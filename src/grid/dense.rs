@@ -212,7 +212,8 @@ impl<const N: usize> Dense<N> {
 
     /// The indices of the occupied cells among `offsets` around `base`, in
     /// order, into `found`, without a branch (most cells are empty); returns
-    /// how many there were (those past `M` are dropped).
+    /// how many there were (past `M`, see below, the slots hold some of them
+    /// or the sentinel, which never blocks).
     #[inline(always)]
     fn occupied<const M: usize>(
         &self,
@@ -228,7 +229,10 @@ impl<const N: usize> Dense<N> {
                 .get(base.wrapping_add_signed(off))
                 .copied()
                 .unwrap_or(EMPTY);
-            if let Some(slot) = found.get_mut(n) {
+            // `n % M` needs no bounds check (M is a power of two); past
+            // `M` occupied cells, later ones overwrite earlier ones, which
+            // only the seed can meet, and any subset suits it.
+            if let Some(slot) = found.get_mut(n % M) {
                 *slot = index;
             }
             n += usize::from(index != EMPTY);
@@ -245,8 +249,8 @@ impl<const N: usize> Dense<N> {
     ) -> Option<[f64; N]> {
         // In chunks, nearest first: the occupied cells' indices without a
         // branch (most cells are empty), then only those points.
+        let mut found = [EMPTY; SCAN_CHUNK];
         for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
-            let mut found = [EMPTY; SCAN_CHUNK];
             let n = self.occupied(base, chunk, &mut found);
             for &index in found.iter().take(n) {
                 let Some(q) = self.points.get(index as usize) else {
