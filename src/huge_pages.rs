@@ -4,7 +4,7 @@
 //! vector are tens of megabytes read at random (each pick lands anywhere),
 //! so with 4 KiB pages nearly every such read also misses the TLB and walks
 //! the page tables. Transparent huge pages (2 MiB) took a million 3-D
-//! points 5–10 % faster (ARCHITECTURE.md has the runs). Most distributions
+//! points 8–10 % faster in paired runs (ARCHITECTURE.md has them). Most distributions
 //! set THP to `madvise` mode, where only memory marked with `madvise`
 //! gets huge pages; in `always` mode the kernel does it anyway, in `never`
 //! it refuses. A no-op off Linux, and for buffers under 4 MiB (they hold
@@ -22,7 +22,9 @@ pub(crate) fn advise<T>(buffer: &Vec<T>) {
     {
         let start = buffer.as_ptr() as usize;
         let bytes = buffer.capacity().saturating_mul(size_of::<T>());
-        let first = start.next_multiple_of(HUGE_PAGE);
+        let first = start
+            .checked_next_multiple_of(HUGE_PAGE)
+            .unwrap_or(usize::MAX);
         let end = start.saturating_add(bytes) / HUGE_PAGE * HUGE_PAGE;
         if end > first {
             // SAFETY: `MADV_HUGEPAGE` neither reads, writes nor frees
