@@ -114,13 +114,9 @@ impl<const N: usize> CandidateSampler<N> {
                 reason = "splitting the word into its two 32-bit halves"
             )]
             let (high, low) = ((x >> 32) as u32, x as u32);
-            let u = f64::from(high) * TWO_POW_M32;
             let (dx, dy) = angle_direction(low);
-            let rho = self.radius * (1.0 + 3.0 * u).sqrt();
             let mut d = [0.0; N];
-            if let [x, y] = d.as_mut_slice() {
-                (*x, *y) = (rho * dx, rho * dy);
-            }
+            place_2d(&mut d, self.area_radius(high), dx, dy);
             d
         } else {
             // Two draws, no branch: radius r·∛(1 + 7u) (uniform in
@@ -130,21 +126,26 @@ impl<const N: usize> CandidateSampler<N> {
             let w = rng.next_u64();
             #[expect(
                 clippy::cast_possible_truncation,
-                clippy::cast_possible_wrap,
                 reason = "splitting words into their 32-bit halves"
             )]
-            let (high, z, angle) = ((x >> 32) as u32, x as u32 as i32, (w >> 32) as u32);
-            let u = f64::from(high) * TWO_POW_M32;
-            let rho = self.radius * cube_root_1_to_8(1.0 + 7.0 * u);
-            let z = f64::from(z) * (2.0 * TWO_POW_M32);
+            let (high, z, angle) = ((x >> 32) as u32, x as u32, (w >> 32) as u32);
             let (c, s) = angle_direction(angle);
-            let ring = rho * (1.0 - z * z).sqrt();
             let mut d = [0.0; N];
-            if let [x, y, h] = d.as_mut_slice() {
-                (*x, *y, *h) = (ring * c, ring * s, rho * z);
-            }
+            place_3d(&mut d, self.volume_radius(high), height(z), c, s);
             d
         }
+    }
+
+    /// `r·√(1 + 3u)` for `u = bits / 2³²`: uniform in area over `r..2r`.
+    #[inline(always)]
+    fn area_radius(&self, bits: u32) -> f64 {
+        self.radius * (1.0 + 3.0 * (f64::from(bits) * TWO_POW_M32)).sqrt()
+    }
+
+    /// `r·∛(1 + 7u)` for `u = bits / 2³²`: uniform in volume over `r..2r`.
+    #[inline(always)]
+    fn volume_radius(&self, bits: u32) -> f64 {
+        self.radius * cube_root_1_to_8(1.0 + 7.0 * (f64::from(bits) * TWO_POW_M32))
     }
 
     /// [`AHEAD`] offsets of [`Self::direct_annulus`], bit for bit: the
@@ -156,19 +157,14 @@ impl<const N: usize> CandidateSampler<N> {
     fn fill_direct_annulus<R: Rng + ?Sized>(&self, rng: &mut R, out: &mut [[f64; N]; AHEAD]) {
         #[expect(
             clippy::cast_possible_truncation,
-            clippy::cast_possible_wrap,
             reason = "splitting words into their 32-bit halves"
         )]
         if N == 2 {
             let words: [u64; AHEAD] = core::array::from_fn(|_| rng.next_u64());
-            let rho = words.map(|x| {
-                self.radius * (1.0 + 3.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32)).sqrt()
-            });
+            let rho = words.map(|x| self.area_radius((x >> 32) as u32));
             let (c, s) = angle_directions(&words.map(|x| x as u32));
-            for (((d, rho), c), s) in out.iter_mut().zip(&rho).zip(&c).zip(&s) {
-                if let [x, y] = d.as_mut_slice() {
-                    (*x, *y) = (rho * c, rho * s);
-                }
+            for (((d, &rho), &c), &s) in out.iter_mut().zip(&rho).zip(&c).zip(&s) {
+                place_2d(d, rho, c, s);
             }
         } else {
             let mut x = [0u64; AHEAD];
@@ -177,20 +173,40 @@ impl<const N: usize> CandidateSampler<N> {
                 *x = rng.next_u64();
                 *w = rng.next_u64();
             }
-            let rho = x.map(|x| {
-                self.radius
-                    * cube_root_1_to_8(1.0 + 7.0 * (f64::from((x >> 32) as u32) * TWO_POW_M32))
-            });
-            let z = x.map(|x| f64::from(x as u32 as i32) * (2.0 * TWO_POW_M32));
+            let rho = x.map(|x| self.volume_radius((x >> 32) as u32));
+            let z = x.map(|x| height(x as u32));
             let (c, s) = angle_directions(&w.map(|w| (w >> 32) as u32));
             let lanes = rho.iter().zip(&z).zip(c.iter().zip(&s));
-            for (d, ((rho, z), (c, s))) in out.iter_mut().zip(lanes) {
-                let ring = rho * (1.0 - z * z).sqrt();
-                if let [x, y, h] = d.as_mut_slice() {
-                    (*x, *y, *h) = (ring * c, ring * s, rho * z);
-                }
+            for (d, ((&rho, &z), (&c, &s))) in out.iter_mut().zip(lanes) {
+                place_3d(d, rho, z, c, s);
             }
         }
+    }
+}
+
+/// A height uniform in `[-1, 1)` from 32 bits read as a signed integer.
+#[inline(always)]
+fn height(bits: u32) -> f64 {
+    #[expect(clippy::cast_possible_wrap, reason = "the bits as a signed integer")]
+    let signed = bits as i32;
+    f64::from(signed) * (2.0 * TWO_POW_M32)
+}
+
+/// The 2-D offset at distance `rho` in direction `(c, s)`.
+#[inline(always)]
+fn place_2d<const N: usize>(d: &mut [f64; N], rho: f64, c: f64, s: f64) {
+    if let [x, y] = d.as_mut_slice() {
+        (*x, *y) = (rho * c, rho * s);
+    }
+}
+
+/// The 3-D offset at distance `rho`, height `z·rho` and azimuth `(c, s)`
+/// (Archimedes: `z` uniform gives a direction uniform on the sphere).
+#[inline(always)]
+fn place_3d<const N: usize>(d: &mut [f64; N], rho: f64, z: f64, c: f64, s: f64) {
+    let ring = rho * (1.0 - z * z).sqrt();
+    if let [x, y, h] = d.as_mut_slice() {
+        (*x, *y, *h) = (ring * c, ring * s, rho * z);
     }
 }
 
