@@ -166,6 +166,14 @@ mod tests {
     use crate::random::{seeded_rng, symmetric_pair, unit};
     use crate::vector::{distance_squared, periodic_distance_squared};
 
+    /// A random unit vector (normalised from the cube: not uniform on the
+    /// sphere, which these tests do not need).
+    fn direction<const N: usize>(rng: &mut crate::random::DefaultRng) -> [f64; N] {
+        let d: [f64; N] = core::array::from_fn(|_| unit(rng) - 0.5);
+        let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        d.map(|x| x / norm)
+    }
+
     #[test]
     fn agrees_with_the_distance_formula() {
         // Remembered points and probes in [-1, 1)², r = 0.3, around the
@@ -222,15 +230,13 @@ mod tests {
             for _ in 0..500 {
                 // A remembered point within 2r of the origin, a probe at
                 // distance r·(1 + t) from it, t in ±2⁻²⁰.
-                let dir: [f64; N] = core::array::from_fn(|_| unit(&mut rng) - 0.5);
-                let norm = dir.iter().map(|x| x * x).sum::<f64>().sqrt();
-                let q: [f64; N] = core::array::from_fn(|i| origin[i] + dir[i] * r / norm);
+                let dir = direction::<N>(&mut rng);
+                let q: [f64; N] = core::array::from_fn(|i| origin[i] + dir[i] * r);
                 let mut cache = Blockers::<N, 8>::new(origin, r);
                 cache.push(&q);
-                let dir2: [f64; N] = core::array::from_fn(|_| unit(&mut rng) - 0.5);
-                let norm2 = dir2.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let dir2 = direction::<N>(&mut rng);
                 let t = (unit(&mut rng) - 0.5) * 2f64.powi(-19);
-                let p: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * (1.0 + t) / norm2);
+                let p: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * (1.0 + t));
                 let exact = distance_squared(&p, &q) < r * r;
                 assert!(
                     !cache.block(&p, r * r) || exact,
@@ -238,7 +244,7 @@ mod tests {
                     distance_squared(&p, &q),
                     r * r
                 );
-                let inside: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * 0.999 / norm2);
+                let inside: [f64; N] = core::array::from_fn(|i| q[i] + dir2[i] * r * 0.999);
                 assert!(cache.block(&inside, r * r), "0.999 r not blocked");
             }
         }
@@ -258,21 +264,16 @@ mod tests {
     fn offsets_as_positions_never_block_at_or_past_r() {
         fn check<const N: usize>(scale: f64, r: f64, seed: u64) {
             let mut rng = seeded_rng(seed);
-            let direction = |rng: &mut crate::random::DefaultRng| -> [f64; N] {
-                let d: [f64; N] = core::array::from_fn(|_| unit(rng) - 0.5);
-                let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-                d.map(|x| x / norm)
-            };
             for _ in 0..500 {
                 let origin: [f64; N] =
                     core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * scale * r);
                 let mut cache = Blockers::<N, 8>::new(origin, r);
-                let offset = direction(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
+                let offset = direction::<N>(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
                 let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
                 #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
                 let rel = offset.map(|o| (o * (1.0 / r)) as f32);
                 let t = (unit(&mut rng) - 0.5) * 2f64.powi(-18);
-                let toward = direction(&mut rng);
+                let toward = direction::<N>(&mut rng);
                 let q: [f64; N] =
                     core::array::from_fn(|i| candidate[i] + toward[i] * r * (1.0 + t));
                 cache.push(&q);
