@@ -88,17 +88,18 @@
 //!
 //! # Performance
 //! Up to 4-D the dense grid has cells of side `r/√N`, each holding the index
-//! of at most one point, and checks a precomputed, nearest-first list of
-//! the neighbour cells within reach of the half-cell the candidate lies in. Each pick also keeps a small cache of points, starting
-//! with its active point's neighbours and adding each point that rejects a
-//! candidate, and checks it first: that settles over 90 % of attempts in
-//! 2-D without a grid search. 2-D and 3-D candidates are drawn without
-//! rejection, several ahead. Each pick is drawn two picks early, so that
-//! its neighbourhood is fetched from memory while earlier picks run (a
-//! cache hint), and on Linux the grid asks for transparent huge pages (a
-//! paging hint): the crate's two `unsafe` blocks. From 5-D up (or when the dense grid would exceed the
-//! memory budget) a sparse hash grid is used, whose memory grows with the
-//! number of points. `README.md` has measured throughput against a textbook
+//! of at most one point, and checks a precomputed, nearest-first list of the
+//! neighbour cells within reach of the half-cell the candidate lies in. Each
+//! pick also keeps a small cache of points, starting with its active point's
+//! neighbours and adding each point that rejects a candidate, and checks it
+//! first: that settles over 90 % of attempts in 2-D without a grid search.
+//! 2-D and 3-D candidates are drawn without rejection, several ahead. Each
+//! pick is drawn two picks early, so that its neighbourhood is fetched from
+//! memory while earlier picks run (a cache hint), and on Linux the grid asks
+//! for transparent huge pages (a paging hint): the crate's two `unsafe`
+//! blocks. From 5-D up (or when the dense grid would exceed the memory
+//! budget) a sparse hash grid is used, whose memory grows with the number of
+//! points. `README.md` has measured throughput against a textbook
 //! implementation.
 #![doc(test(attr(deny(warnings))))]
 // No panics on user input: library code neither unwraps nor indexes
