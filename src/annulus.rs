@@ -145,7 +145,21 @@ impl<const N: usize> CandidateSampler<N> {
     /// `r·∛(1 + 7u)` for `u = bits / 2³²`: uniform in volume over `r..2r`.
     #[inline(always)]
     fn volume_radius(&self, bits: u32) -> f64 {
-        self.radius * cube_root_1_to_8(1.0 + 7.0 * (f64::from(bits) * TWO_POW_M32))
+        let ((root, scale), d) = (cube_entry(bits), cube_step(bits));
+        self.radius * cube_root_near(root, d * scale)
+    }
+
+    /// [`Self::volume_radius`] for [`AHEAD`] draws, step by step over all of
+    /// them (the look-ups, then the arithmetic), bit for bit the same.
+    #[inline(always)]
+    fn volume_radii(&self, bits: &[u32; AHEAD]) -> [f64; AHEAD] {
+        let entries = bits.map(cube_entry);
+        let steps = bits.map(cube_step);
+        let mut rho = [0.0; AHEAD];
+        for ((rho, &(root, scale)), &d) in rho.iter_mut().zip(&entries).zip(&steps) {
+            *rho = self.radius * cube_root_near(root, d * scale);
+        }
+        rho
     }
 
     /// [`AHEAD`] offsets of [`Self::direct_annulus`], bit for bit: the
@@ -173,7 +187,7 @@ impl<const N: usize> CandidateSampler<N> {
                 *x = rng.next_u64();
                 *w = rng.next_u64();
             }
-            let rho = x.map(|x| self.volume_radius((x >> 32) as u32));
+            let rho = self.volume_radii(&x.map(|x| (x >> 32) as u32));
             let z = x.map(|x| height(x as u32));
             let (c, s) = angle_directions(&w.map(|w| (w >> 32) as u32));
             let lanes = rho.iter().zip(&z).zip(c.iter().zip(&s));
@@ -390,19 +404,85 @@ fn rotate((c, s): (f64, f64), delta: f64) -> (f64, f64) {
     (c * cd - s * sd, s * cd + c * sd)
 }
 
-/// `∛a` for `1 <= a < 8`: a cubic fit (relative error < 2e-2) refined by
-/// two Halley steps (each cubes the error) to about 4e-16. Basic arithmetic
-/// only, so reproducible, unlike `f64::cbrt`.
-#[inline(always)]
-fn cube_root_1_to_8(a: f64) -> f64 {
-    let mut y = 0.721_360_686_538_094_6
-        + a * (0.328_966_829_104_385_96
-            + a * (-0.034_739_246_696_413_255 + a * 0.001_714_508_497_739_981_4));
-    for _ in 0..2 {
-        let y3 = y * y * y;
-        y *= (y3 + 2.0 * a) / (2.0 * y3 + a);
+/// Entries in [`CUBE_ROOTS`]; the top `log2` of a radius's 32 bits pick one.
+const CUBE_BITS: u32 = 8;
+
+/// For each interval `i` of `u = bits / 2³²` that the top 8 bits select,
+/// `(∛a₀, 7·2⁻³²/a₀)` at its midpoint `a₀ = 1 + 7·(i + ½)/256`: the cube
+/// root there, and the scale that turns the low 24 bits' distance from the
+/// midpoint into `t = (a - a₀)/a₀`. Computed at compile time with basic
+/// arithmetic (Halley steps), so the same bits on every platform.
+const CUBE_ROOTS: [(f64, f64); 1 << CUBE_BITS] = cube_roots();
+
+const fn cube_roots() -> [(f64, f64); 1 << CUBE_BITS] {
+    let mut table = [(0.0, 0.0); 1 << CUBE_BITS];
+    let mut i = 0;
+    while i < table.len() {
+        #[expect(clippy::cast_precision_loss, reason = "i < 256")]
+        let a = 1.0 + 7.0 * (i as f64 + 0.5) / (1 << CUBE_BITS) as f64;
+        // Halley's iteration from 1.5 (error under 0.5 for 1 <= a < 8)
+        // cubes the error each step: 8 steps are far more than enough.
+        let mut y = 1.5;
+        let mut step = 0;
+        while step < 8 {
+            let y3 = y * y * y;
+            y *= (y3 + 2.0 * a) / (2.0 * y3 + a);
+            step += 1;
+        }
+        #[expect(
+            clippy::indexing_slicing,
+            reason = "i < table.len() by the loop condition (compile time only)"
+        )]
+        let entry = &mut table[i];
+        *entry = (y, 7.0 * TWO_POW_M32 / a);
+        i += 1;
     }
-    y
+    table
+}
+
+/// The [`CUBE_ROOTS`] entry for the top 8 bits of a radius draw.
+#[inline(always)]
+fn cube_entry(bits: u32) -> (f64, f64) {
+    // `bits >> 24 < 256 = CUBE_ROOTS.len()`: never the fallback.
+    CUBE_ROOTS
+        .get((bits >> (32 - CUBE_BITS)) as usize)
+        .copied()
+        .unwrap_or((1.0, 0.0))
+}
+
+/// The low 24 bits' signed distance from their interval's midpoint, in
+/// units of `2⁻³²` of `u`: `-2²³ ..= 2²³ - 1`.
+#[inline(always)]
+fn cube_step(bits: u32) -> f64 {
+    const LOW: u32 = (1 << (32 - CUBE_BITS)) - 1;
+    const HALF: i32 = 1 << (31 - CUBE_BITS);
+    #[expect(clippy::cast_possible_wrap, reason = "24 bits fit an i32")]
+    let low = (bits & LOW) as i32;
+    f64::from(low - HALF)
+}
+
+/// `root·∛(1 + t)` for `|t| <= 7/512`, by the binomial series of `∛(1 + t)`
+/// through `t⁷` (the first term left out is below `2e-17`), as
+/// `root + root·(t·(…))` so that only the last addition rounds at the
+/// result's scale, and in Estrin's form: shorter chains than Horner's.
+/// With [`CUBE_ROOTS`] this replaced a polynomial fit and two Halley steps,
+/// whose two divisions a 3-D profile showed waiting (`ARCHITECTURE.md`).
+#[inline(always)]
+fn cube_root_near(root: f64, t: f64) -> f64 {
+    const C: [f64; 7] = [
+        1.0 / 3.0,
+        -1.0 / 9.0,
+        5.0 / 81.0,
+        -10.0 / 243.0,
+        22.0 / 729.0,
+        -154.0 / 6561.0,
+        374.0 / 19683.0,
+    ];
+    let [c1, c2, c3, c4, c5, c6, c7] = C;
+    let t2 = t * t;
+    let t4 = t2 * t2;
+    let q = ((c1 + c2 * t) + t2 * (c3 + c4 * t)) + t4 * ((c5 + c6 * t) + t2 * c7);
+    root + root * (t * q)
 }
 
 /// `(cos x, sin x)` by their Taylor series through `x²⁴` and `x²⁵`: within
@@ -491,14 +571,23 @@ mod tests {
     }
 
     #[test]
-    fn cube_root_matches_libm() {
-        for i in 0..=7000 {
-            let a = 1.0 + f64::from(i) / 1000.0;
-            let y = cube_root_1_to_8(a);
+    fn volume_radius_matches_libm() {
+        let sampler = CandidateSampler::<3>::new(Candidates::Annulus, 1.0, 30);
+        // Interval ends, midpoints and a hair either side, then a sweep.
+        let edges = (0..=256u64).flat_map(|i| {
+            let at = i << 24;
+            [at.wrapping_sub(1), at, at + 1, at + (1 << 23)]
+        });
+        let sweep = (0..100_000u64).map(|i| i * 42_949);
+        for bits in edges.chain(sweep).filter_map(|b| u32::try_from(b).ok()) {
+            let want = (1.0 + 7.0 * (f64::from(bits) / 4_294_967_296.0)).cbrt();
+            let got = sampler.volume_radius(bits);
             assert!(
-                (y - a.cbrt()).abs() <= 2.0 * f64::EPSILON * y,
-                "cbrt({a}) = {y}"
+                (got - want).abs() <= 2.0 * f64::EPSILON * want,
+                "bits {bits:#x}: {got} against {want}"
             );
+            let ahead = sampler.volume_radii(&[bits; AHEAD]);
+            assert!(ahead.iter().all(|&x| x.to_bits() == got.to_bits()));
         }
     }
 
