@@ -320,7 +320,8 @@ fn unit_direction<const N: usize, R: Rng + ?Sized>(rng: &mut R) -> [f64; N] {
 
 const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
-/// Entries in [`DIRECTIONS`]; the top `log2` of an angle's 32 bits pick one.
+/// Entries in [`DIRECTIONS`] and [`CUBE_ROOTS`]; the top `log2` of a
+/// draw's 32 bits pick one.
 const TABLE_BITS: u32 = 8;
 
 /// `(cos, sin)` of `2π·i/256`, computed at compile time by [`series`]: basic
@@ -378,8 +379,14 @@ fn angle_directions(bits: &[u32; AHEAD]) -> ([f64; AHEAD], [f64; AHEAD]) {
 /// The table entry for the top 8 bits of an angle.
 #[inline(always)]
 fn table_direction(bits: u32) -> (f64, f64) {
-    // `bits >> 24 < 256 = DIRECTIONS.len()`: never the fallback.
-    DIRECTIONS
+    by_top_bits(&DIRECTIONS, bits)
+}
+
+/// The entry of a [`TABLE_BITS`]-bit table that the top bits of a 32-bit
+/// draw select (`bits >> 24 < 256`: never the fallback).
+#[inline(always)]
+fn by_top_bits(table: &[(f64, f64); 1 << TABLE_BITS], bits: u32) -> (f64, f64) {
+    table
         .get((bits >> (32 - TABLE_BITS)) as usize)
         .copied()
         .unwrap_or((1.0, 0.0))
@@ -404,22 +411,19 @@ fn rotate((c, s): (f64, f64), delta: f64) -> (f64, f64) {
     (c * cd - s * sd, s * cd + c * sd)
 }
 
-/// Entries in [`CUBE_ROOTS`]; the top `log2` of a radius's 32 bits pick one.
-const CUBE_BITS: u32 = 8;
-
 /// For each interval `i` of `u = bits / 2³²` that the top 8 bits select,
 /// `(∛a₀, 7·2⁻³²/a₀)` at its midpoint `a₀ = 1 + 7·(i + ½)/256`: the cube
 /// root there, and the scale that turns the low 24 bits' distance from the
 /// midpoint into `t = (a - a₀)/a₀`. Computed at compile time with basic
 /// arithmetic (Halley steps), so the same bits on every platform.
-const CUBE_ROOTS: [(f64, f64); 1 << CUBE_BITS] = cube_roots();
+const CUBE_ROOTS: [(f64, f64); 1 << TABLE_BITS] = cube_roots();
 
-const fn cube_roots() -> [(f64, f64); 1 << CUBE_BITS] {
-    let mut table = [(0.0, 0.0); 1 << CUBE_BITS];
+const fn cube_roots() -> [(f64, f64); 1 << TABLE_BITS] {
+    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
     let mut i = 0;
     while i < table.len() {
         #[expect(clippy::cast_precision_loss, reason = "i < 256")]
-        let a = 1.0 + 7.0 * (i as f64 + 0.5) / (1 << CUBE_BITS) as f64;
+        let a = 1.0 + 7.0 * (i as f64 + 0.5) / (1 << TABLE_BITS) as f64;
         // Halley's iteration from 1.5 (error under 0.5 for 1 <= a < 8)
         // cubes the error each step: 8 steps are far more than enough.
         let mut y = 1.5;
@@ -443,19 +447,15 @@ const fn cube_roots() -> [(f64, f64); 1 << CUBE_BITS] {
 /// The [`CUBE_ROOTS`] entry for the top 8 bits of a radius draw.
 #[inline(always)]
 fn cube_entry(bits: u32) -> (f64, f64) {
-    // `bits >> 24 < 256 = CUBE_ROOTS.len()`: never the fallback.
-    CUBE_ROOTS
-        .get((bits >> (32 - CUBE_BITS)) as usize)
-        .copied()
-        .unwrap_or((1.0, 0.0))
+    by_top_bits(&CUBE_ROOTS, bits)
 }
 
 /// The low 24 bits' signed distance from their interval's midpoint, in
 /// units of `2⁻³²` of `u`: `-2²³ ..= 2²³ - 1`.
 #[inline(always)]
 fn cube_step(bits: u32) -> f64 {
-    const LOW: u32 = (1 << (32 - CUBE_BITS)) - 1;
-    const HALF: i32 = 1 << (31 - CUBE_BITS);
+    const LOW: u32 = (1 << (32 - TABLE_BITS)) - 1;
+    const HALF: i32 = 1 << (31 - TABLE_BITS);
     #[expect(clippy::cast_possible_wrap, reason = "24 bits fit an i32")]
     let low = (bits & LOW) as i32;
     f64::from(low - HALF)
