@@ -145,8 +145,7 @@ impl<const N: usize> CandidateSampler<N> {
     /// `r·∛(1 + 7u)` for `u = bits / 2³²`: uniform in volume over `r..2r`.
     #[inline(always)]
     fn volume_radius(&self, bits: u32) -> f64 {
-        let ((root, scale), d) = (cube_entry(bits), cube_step(bits));
-        self.radius * cube_root_near(root, d * scale)
+        self.volume_radius_from(cube_entry(bits), cube_step(bits))
     }
 
     /// [`Self::volume_radius`] for [`AHEAD`] draws, step by step over all of
@@ -156,10 +155,17 @@ impl<const N: usize> CandidateSampler<N> {
         let entries = bits.map(cube_entry);
         let steps = bits.map(cube_step);
         let mut rho = [0.0; AHEAD];
-        for ((rho, &(root, scale)), &d) in rho.iter_mut().zip(&entries).zip(&steps) {
-            *rho = self.radius * cube_root_near(root, d * scale);
+        for ((rho, &entry), &d) in rho.iter_mut().zip(&entries).zip(&steps) {
+            *rho = self.volume_radius_from(entry, d);
         }
         rho
+    }
+
+    /// The arithmetic of [`Self::volume_radius`], from the draw's
+    /// [`CUBE_ROOTS`] entry and its [`cube_step`].
+    #[inline(always)]
+    fn volume_radius_from(&self, (root, scale): (f64, f64), step: f64) -> f64 {
+        self.radius * cube_root_near(root, step * scale)
     }
 
     /// [`AHEAD`] offsets of [`Self::direct_annulus`], bit for bit: the
