@@ -7,8 +7,8 @@
 //! points 8–10 % faster in paired runs (ARCHITECTURE.md has them). Most distributions
 //! set THP to `madvise` mode, where only memory marked with `madvise`
 //! gets huge pages; in `always` mode the kernel does it anyway, in `never`
-//! it refuses. A no-op off Linux, and for buffers under 4 MiB (they hold
-//! no whole aligned huge page).
+//! it refuses. A no-op off Linux, and for buffers that hold no whole
+//! 2 MiB-aligned huge page (all under 2 MiB, and some up to 4 MiB).
 
 /// The huge page size asked for (x86-64 and most ARM64 kernels).
 #[cfg(target_os = "linux")]
