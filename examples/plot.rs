@@ -789,7 +789,9 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
                 .flat_map(|pixel| pixel.points)
                 .map(|p| core::array::from_fn(|i| p.get(i).copied().unwrap_or(0.0)))
                 .collect(),
-            None => sampler.generate_seeded(seed),
+            None => sampler
+                .generate_seeded(seed)
+                .map_err(|e| Failure::Usage(e.to_string()))?,
         };
         total += points.len();
         if let Some(pg) = &mut periodogram {
@@ -1274,7 +1276,7 @@ mod tests {
             "--radius nan --report r",
             "--extent 1,0 --report r",
             "--attempts 0 --report r",
-            "--dim 3 --radius 1e-9 --report r",
+            "--dim 3 --radius 1e-13 --report r",
         ] {
             let c = config(line);
             assert!(
@@ -1289,7 +1291,7 @@ mod tests {
         let r = default_radius::<2>(1.0).expect("radius");
         assert!((r - 0.0124).abs() < 1e-4, "r {r}");
         let sampler = build::<2>(&config("--report r")).expect("sampler");
-        let n = sampler.generate_seeded(0).len();
+        let n = sampler.generate_seeded(0).unwrap().len();
         assert!((3700..4300).contains(&n), "{n} points");
     }
 
@@ -1319,7 +1321,7 @@ mod tests {
     fn the_report_is_valid_json_with_every_field() {
         let c = config("--pixels 6x4 --radius 0.3 --probes 2000 --report -");
         let sampler = build::<2>(&c).expect("sampler");
-        let points = sampler.generate_seeded(0);
+        let points = sampler.generate_seeded(0).unwrap();
         let text = quality_report(&c, *sampler.domain(), sampler.radius(), &points);
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         assert_eq!(v["n"].as_u64(), Some(points.len() as u64), "n");

@@ -10,7 +10,9 @@
 //! output fails (for example a broken pipe), 2 for bad arguments or
 //! parameters the sampler rejects.
 
-use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk, Scheme, Tiled};
+use bridson::{
+    Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, PoissonDisk, Scheme, Tiled,
+};
 use std::ffi::OsString;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -46,6 +48,8 @@ Options:
   --candidates KIND        annulus | sphere                [default: annulus]
   --seed S                 seed, an unsigned 64-bit integer     [default: 0]
   --max-points N           stop after N points
+  --max-grid-bytes B       memory budget of the run, in bytes [default: 1 GiB];
+                             a run that outgrows it stops with exit code 2
   --format FMT             csv | json | none                    [default: csv]
                              csv:  header x0,x1,.. then one point a line
                              json: {\"dim\":..,\"radius\":..,\"lo\":[..],\"hi\":[..],\"points\":[[..],..]}
@@ -93,6 +97,8 @@ struct Config {
     candidates: Candidates,
     seed: u64,
     max_points: Option<u64>,
+    /// `--max-grid-bytes`: the run's memory budget.
+    max_grid_bytes: Option<u64>,
     format: Format,
     out: Option<PathBuf>,
     /// `--pixels`: stream a raster instead of sampling the box.
@@ -187,6 +193,7 @@ where
     let mut candidates: Option<Candidates> = None;
     let mut seed: Option<u64> = None;
     let mut max_points: Option<u64> = None;
+    let mut max_grid_bytes: Option<u64> = None;
     let mut format: Option<Format> = None;
     let mut out: Option<PathBuf> = None;
     let mut pixels: Option<(u32, u32)> = None;
@@ -297,6 +304,11 @@ where
                 let cap = parse_number(&flag, &v, "an unsigned 64-bit integer")?;
                 set(&mut max_points, cap, &flag)?;
             }
+            "--max-grid-bytes" => {
+                let v = text_value(&flag, inline, &mut args)?;
+                let bytes = parse_number(&flag, &v, "an unsigned 64-bit integer")?;
+                set(&mut max_grid_bytes, bytes, &flag)?;
+            }
             "--format" => {
                 let v = text_value(&flag, inline, &mut args)?;
                 let f = match v.as_str() {
@@ -334,6 +346,7 @@ where
             ("--periodic", periodic_all),
             ("--periodic-axes", periodic_axes.is_some()),
             ("--max-points", max_points.is_some()),
+            ("--max-grid-bytes", max_grid_bytes.is_some()),
         ];
         if let Some((flag, _)) = not_with_pixels.iter().find(|(_, given)| *given) {
             return Err(format!("{flag} does not apply with --pixels"));
@@ -357,6 +370,7 @@ where
             candidates: candidates.unwrap_or_default(),
             seed: seed.unwrap_or(0),
             max_points: None,
+            max_grid_bytes: None,
             format: format.unwrap_or(Format::Csv),
             out,
             raster: Some(Raster {
@@ -414,6 +428,7 @@ where
         candidates: candidates.unwrap_or_default(),
         seed: seed.unwrap_or(0),
         max_points,
+        max_grid_bytes,
         format: format.unwrap_or(Format::Csv),
         out,
         raster: None,
@@ -505,7 +520,7 @@ fn dispatch(config: &Config) -> Result<(), Failure> {
 /// summary.
 fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
     let sampler = build::<N>(config).map_err(Failure::Usage)?;
-    let (count, elapsed, layout) = match (config.format, &config.out) {
+    let (count, elapsed, layout, stopped) = match (config.format, &config.out) {
         (Format::None, _) => write_points(io::sink(), Format::None, &sampler, config.seed),
         (format, Some(path)) => {
             let file = File::create(path)
@@ -527,7 +542,8 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
         Failure::Io(format!("writing to {target}: {e}"))
     })?;
     report(&summary(&sampler, count, elapsed, layout));
-    Ok(())
+    // The points written are valid, but the set is incomplete: say why.
+    stopped.map_or(Ok(()), |e| Err(Failure::Usage(e.to_string())))
 }
 
 /// The sampler `config` describes, or the library's reason why not.
@@ -566,6 +582,7 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
     PoissonDisk::<N>::builder(domain, config.radius)
         .attempts(config.attempts)
         .max_points(config.max_points)
+        .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
         .candidates(config.candidates)
         .build()
         .map_err(|e| e.to_string())
@@ -577,20 +594,21 @@ fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], St
 }
 
 /// Streams the points of `seed` to `out` in `format`, flushing at the end.
-/// Returns the count and the time from building the grid to the flush.
+/// Returns the count, the time from building the grid to the flush, the
+/// layout built, and why the run stopped early if it did (the budget).
 fn write_points<const N: usize, W: Write>(
     out: W,
     format: Format,
     sampler: &PoissonDisk<N>,
     seed: u64,
-) -> io::Result<(u64, Duration, GridLayout)> {
+) -> io::Result<(u64, Duration, GridLayout, Option<Error>)> {
     let start = Instant::now();
-    let points = sampler.iter_seeded(seed);
+    let mut points = sampler.iter_seeded(seed);
     let layout = points.layout();
     let domain = sampler.domain();
     let header = (sampler.radius(), domain.lo(), domain.hi());
-    let count = write_stream(out, format, header, points)?;
-    Ok((count, start.elapsed(), layout))
+    let count = write_stream(out, format, header, points.by_ref())?;
+    Ok((count, start.elapsed(), layout, points.error()))
 }
 
 /// Writes `points` as they come in `format`, with the JSON header values
@@ -765,6 +783,7 @@ mod tests {
             candidates: Candidates::Annulus,
             seed: 7,
             max_points: None,
+            max_grid_bytes: None,
             format: Format::Csv,
             out: Some(PathBuf::from("pts.csv")),
             raster: None,
@@ -929,7 +948,11 @@ mod tests {
             "--dim 2 --radius 1 --extent 1,0",
             "--dim 2 --radius 1 --extent 1,inf",
             "--dim 2 --radius 1 --attempts 0",
-            "--dim 3 --radius 1e-9",
+            "--dim 3 --radius 1e-13",
+            "--dim 2 --radius 1 --attempts 65537",
+            // Outgrows its budget: the points written are valid, but the
+            // run is an error (exit code 2).
+            "--dim 3 --radius 1e-9 --max-grid-bytes 100000 --format none",
         ] {
             let c = config(line);
             assert!(
@@ -994,7 +1017,7 @@ mod tests {
         let mut lines = text.lines();
         assert_eq!(lines.next(), Some("x0,x1"), "header");
         let c = config("--dim 2 --radius 0.2 --lo -1,5 --seed 3");
-        let expected = build::<2>(&c).unwrap().generate_seeded(3);
+        let expected = build::<2>(&c).unwrap().generate_seeded(3).unwrap();
         let got: Vec<[f64; 2]> = lines
             .map(|l| {
                 let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();

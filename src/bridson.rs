@@ -3,6 +3,7 @@
 
 use crate::annulus::{Ahead, CandidateSampler, Candidates};
 use crate::blockers::{Blockers, NEAR_ORIGIN};
+use crate::budget::{reserve_one, vec_bytes};
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -15,10 +16,16 @@ use rand::Rng;
 /// Bridson's `k = 30`.
 pub const DEFAULT_ATTEMPTS: u32 = 30;
 
+/// The largest number of attempts `k` accepted: 65 536. A run costs about
+/// `2·n·k` candidate throws for `n` points; past a few hundred attempts the
+/// packing hardly changes, and a `k` in the billions would keep a run going
+/// for hours.
+pub const MAX_ATTEMPTS: u32 = 1 << 16;
+
 /// Smallest and largest radius accepted: beyond them `r²` (or the squared
 /// distances compared with it) is no longer a normal `f64`.
-pub(crate) const MIN_RADIUS: f64 = 1e-150;
-pub(crate) const MAX_RADIUS: f64 = 1e150;
+const MIN_RADIUS: f64 = 1e-150;
+const MAX_RADIUS: f64 = 1e150;
 
 /// A validated Poisson disk sampler in `N` dimensions: domain, radius,
 /// attempts, candidate distribution and grid choice.
@@ -39,7 +46,7 @@ pub(crate) const MAX_RADIUS: f64 = 1e150;
 ///     .attempts(20)
 ///     .candidates(Candidates::Sphere)
 ///     .build()?;
-/// let points = sampler.generate_seeded(42);
+/// let points = sampler.generate_seeded(42)?;
 /// assert!(points.len() > 50);
 /// assert!(points.iter().all(|p| domain.contains(p)));
 /// # Ok::<(), bridson::Error>(())
@@ -117,8 +124,11 @@ impl<const N: usize> Builder<N> {
         self
     }
 
-    /// Sets the memory budget of the background grid in bytes (default
-    /// [`DEFAULT_MAX_GRID_BYTES`](crate::DEFAULT_MAX_GRID_BYTES), 1 GiB).
+    /// Sets the memory budget of a run in bytes (default
+    /// [`DEFAULT_MAX_GRID_BYTES`](crate::DEFAULT_MAX_GRID_BYTES), 1 GiB): the
+    /// most heap the grid, its points and the active list may hold at once,
+    /// counted before each allocation. A run that would outgrow it stops
+    /// ([`Iter::error`]).
     #[must_use]
     pub fn max_grid_bytes(mut self, bytes: u64) -> Self {
         self.max_grid_bytes = bytes;
@@ -126,8 +136,8 @@ impl<const N: usize> Builder<N> {
     }
 
     /// Stops after `cap` points (default `None`: until the domain is full).
-    /// A cap also bounds the sparse grid's memory, so it can make a huge
-    /// domain feasible.
+    /// A cap also bounds the memory a run grows to, so it can make a huge
+    /// domain complete within the budget.
     #[must_use]
     pub fn max_points(mut self, cap: Option<u64>) -> Self {
         self.max_points = cap;
@@ -141,8 +151,12 @@ impl<const N: usize> Builder<N> {
     /// the domain was deserialised from bad values;
     /// [`Error::InvalidRadius`] if the radius is NaN, infinite, `<= 0` or
     /// outside `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
-    /// [`Error::GridTooLarge`] if no grid layout fits the budget (a tiny
-    /// radius in a huge box: cap the points or raise the budget).
+    /// [`Error::TooManyAttempts`] if `k > MAX_ATTEMPTS`;
+    /// [`Error::BoxTooWide`] if the box spans more than 2⁴⁰ radii;
+    /// [`Error::GridTooLarge`] if what a grid allocates before its first
+    /// point is over the budget (a dense grid asked for with a tiny radius,
+    /// or a budget too small for a single point). Whether the points fit is
+    /// known only as they come: see [`Iter::error`].
     pub fn build(self) -> Result<PoissonDisk<N>, Error> {
         if N == 0 {
             return Err(Error::ZeroDimension);
@@ -150,12 +164,7 @@ impl<const N: usize> Builder<N> {
         // Re-checked: deserialisation can produce any Domain.
         let d = self.domain;
         let domain = Domain::new(d.lo(), d.hi())?.with_periodic(d.periodic());
-        if !(MIN_RADIUS..=MAX_RADIUS).contains(&self.radius) {
-            return Err(Error::InvalidRadius);
-        }
-        if self.attempts == 0 {
-            return Err(Error::ZeroAttempts);
-        }
+        check_radius_and_attempts(self.radius, self.attempts)?;
         let plan = plan(
             &domain,
             self.radius,
@@ -168,6 +177,21 @@ impl<const N: usize> Builder<N> {
             plan,
         })
     }
+}
+
+/// The checks on the radius and the attempts that every sampler of the
+/// crate makes, in this order.
+pub(crate) fn check_radius_and_attempts(radius: f64, attempts: u32) -> Result<(), Error> {
+    if !(MIN_RADIUS..=MAX_RADIUS).contains(&radius) {
+        return Err(Error::InvalidRadius);
+    }
+    if attempts == 0 {
+        return Err(Error::ZeroAttempts);
+    }
+    if attempts > MAX_ATTEMPTS {
+        return Err(Error::TooManyAttempts { max: MAX_ATTEMPTS });
+    }
+    Ok(())
 }
 
 #[cfg(feature = "serde")]
@@ -258,8 +282,11 @@ impl<const N: usize> PoissonDisk<N> {
         self.config.max_points
     }
 
-    /// The planned size of the background grid in bytes: exact for the
-    /// dense layout, an upper bound for the sparse one.
+    /// The bytes the grid takes before its first point is stored, checked
+    /// against the budget by `build()`: for the dense layout its cells and
+    /// search stencils (a bound on their peak while built), for the sparse
+    /// one a single point's share. What the points take comes on top, and
+    /// is counted as they come ([`Iter::heap_bytes`]).
     pub fn grid_bytes(&self) -> u64 {
         match self.plan {
             GridPlan::Dense(d) => d.bytes,
@@ -284,6 +311,10 @@ impl<const N: usize> PoissonDisk<N> {
             radius_squared: c.radius * c.radius,
             attempts: c.attempts,
             remaining: c.max_points.unwrap_or(u64::MAX),
+            made: 0,
+            single_point: c.domain.holds_one_point(c.radius),
+            budget: c.max_grid_bytes,
+            error: None,
             started: false,
             ahead: Ahead::new(),
             next_pick: [None; 2],
@@ -297,21 +328,33 @@ impl<const N: usize> PoissonDisk<N> {
     }
 
     /// All points, drawn from `rng`.
-    pub fn generate<R: Rng>(&self, rng: R) -> Vec<[f64; N]> {
-        self.iter(rng).collect()
+    ///
+    /// # Errors
+    /// [`Error::MemoryBudgetExceeded`] if the run outgrew the memory budget
+    /// before it ended. To keep the points made up to then (a valid, but
+    /// incomplete, set), use [`iter`](Self::iter) and [`Iter::error`].
+    pub fn generate<R: Rng>(&self, rng: R) -> Result<Vec<[f64; N]>, Error> {
+        let mut points = self.iter(rng);
+        let all = points.by_ref().collect();
+        points.error().map_or(Ok(all), Err)
     }
 
     /// All points for `seed` (see [`iter_seeded`](Self::iter_seeded)).
-    pub fn generate_seeded(&self, seed: u64) -> Vec<[f64; N]> {
-        self.iter_seeded(seed).collect()
+    ///
+    /// # Errors
+    /// As [`generate`](Self::generate).
+    pub fn generate_seeded(&self, seed: u64) -> Result<Vec<[f64; N]>, Error> {
+        self.generate(seeded_rng(seed))
     }
 }
 
 /// The lazy point stream of a [`PoissonDisk`]: yields each point as soon as
 /// it is accepted, in generation order.
 ///
-/// Ends when no active point is left (the domain is full, to `k` attempts)
-/// or the point cap is reached; stays ended ([`FusedIterator`]).
+/// Ends when no active point is left (the domain is full, to `k` attempts),
+/// the point cap is reached, or storing the next point would take the
+/// run's memory past the budget ([`error`](Self::error) then says so);
+/// stays ended ([`FusedIterator`]).
 #[derive(Debug)]
 pub struct Iter<const N: usize, R> {
     rng: R,
@@ -323,6 +366,14 @@ pub struct Iter<const N: usize, R> {
     radius_squared: f64,
     attempts: u32,
     remaining: u64,
+    /// Points yielded so far.
+    made: u64,
+    /// No two points of the box can be `r` apart: the first is the last.
+    single_point: bool,
+    /// The memory budget, in bytes, for the grid and the active list.
+    budget: u64,
+    /// Why the stream ended early, if it did.
+    error: Option<Error>,
     started: bool,
     ahead: Ahead<N>,
     /// The indices of the next two picks, drawn ahead (see
@@ -348,6 +399,8 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 attempts,
                 ahead,
                 next_pick,
+                budget,
+                error,
                 ..
             } = self;
             let state = State {
@@ -359,6 +412,9 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
                 attempts: *attempts,
                 ahead,
                 next_pick,
+                budget: *budget,
+                made: self.made,
+                error,
             };
             match grid {
                 Grid::Dense(g) => state.grow(g),
@@ -368,15 +424,29 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
             self.started = true;
             let first = first_point(&self.domain, &mut self.rng);
             let stored = match &mut self.grid {
-                Grid::Dense(g) => g.insert(first),
-                Grid::Sparse(g) => g.insert(first),
+                Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
+                Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
             };
-            stored.then(|| {
-                self.active.push(first);
-                first
-            })
+            match stored {
+                Stored::Yes => {
+                    if self.single_point {
+                        // No second point can be far enough: done.
+                        self.active.clear();
+                    }
+                    Some(first)
+                }
+                Stored::NoRoom => None,
+                Stored::OverBudget => {
+                    self.error = Some(Error::MemoryBudgetExceeded {
+                        points: 0,
+                        budget: self.budget,
+                    });
+                    None
+                }
+            }
         }?;
         self.remaining -= 1;
+        self.made += 1;
         Some(point)
     }
 
@@ -392,6 +462,40 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
 impl<const N: usize, R: Rng> FusedIterator for Iter<N, R> {}
 
 impl<const N: usize, R> Iter<N, R> {
+    /// Why the stream ended before the domain was full, if it did:
+    /// [`Error::MemoryBudgetExceeded`] when storing the next point would
+    /// have taken the run's memory past the budget. `None` while the stream
+    /// runs, and after it ends normally (full domain or point cap). The
+    /// points yielded before are a valid set either way.
+    ///
+    /// # Example: telling a full set from one cut short by the budget
+    /// ```
+    /// use bridson::{Domain, Error, PoissonDisk2};
+    /// let domain = Domain::from_extent([1.0, 1.0])?;
+    /// let sampler = PoissonDisk2::builder(domain, 0.001)
+    ///     .max_grid_bytes(1 << 20)
+    ///     .build()?;
+    /// let mut points = sampler.iter_seeded(1);
+    /// let made = points.by_ref().count();
+    /// assert!(made > 0);
+    /// assert!(matches!(points.error(), Some(Error::MemoryBudgetExceeded { .. })));
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    pub fn error(&self) -> Option<Error> {
+        self.error
+    }
+
+    /// The heap bytes the run holds now, as counted against the budget:
+    /// the grid (cells, stencils, points or hash table) and the active
+    /// list. Never above [`PoissonDisk::max_grid_bytes`].
+    pub fn heap_bytes(&self) -> u64 {
+        let grid = match &self.grid {
+            Grid::Dense(g) => g.bytes(),
+            Grid::Sparse(g) => g.bytes(),
+        };
+        grid.saturating_add(vec_bytes(&self.active))
+    }
+
     /// The grid layout actually built: [`GridLayout::Dense`] or
     /// [`GridLayout::Sparse`] (the latter also when a dense allocation
     /// failed and the sampler fell back).
@@ -414,6 +518,9 @@ struct State<'a, const N: usize, R> {
     attempts: u32,
     ahead: &'a mut Ahead<N>,
     next_pick: &'a mut [Option<usize>; 2],
+    budget: u64,
+    made: u64,
+    error: &'a mut Option<Error>,
 }
 
 impl<const N: usize, R: Rng> State<'_, N, R> {
@@ -499,15 +606,57 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                     blockers.push(&q);
                     continue;
                 }
-                if grid.insert(candidate) {
-                    self.active.push(candidate);
-                    return Some(candidate);
+                match store(grid, self.active, candidate, self.budget) {
+                    Stored::Yes => return Some(candidate),
+                    Stored::NoRoom => {}
+                    Stored::OverBudget => {
+                        *self.error = Some(Error::MemoryBudgetExceeded {
+                            points: self.made,
+                            budget: self.budget,
+                        });
+                        self.active.clear();
+                        return None;
+                    }
                 }
             }
             self.active.swap_remove(i);
         }
         None
     }
+}
+
+/// What became of a valid candidate.
+enum Stored {
+    /// In the grid and the active list.
+    Yes,
+    /// The grid had no room for it (see [`NeighbourGrid::insert`]): a
+    /// failed attempt.
+    NoRoom,
+    /// Storing it would take the memory past the budget.
+    OverBudget,
+}
+
+/// Stores a valid candidate in the grid and the active list, if the memory
+/// that takes fits the budget: the active list's growth is checked first,
+/// then the grid's, each against what is left.
+fn store<const N: usize, G: NeighbourGrid<N>>(
+    grid: &mut G,
+    active: &mut Vec<[f64; N]>,
+    p: [f64; N],
+    budget: u64,
+) -> Stored {
+    let spare = budget.saturating_sub(grid.bytes().saturating_add(vec_bytes(active)));
+    let Some(grown) = reserve_one(active, spare) else {
+        return Stored::OverBudget;
+    };
+    if !grid.reserve(&p, spare.saturating_sub(grown)) {
+        return Stored::OverBudget;
+    }
+    if !grid.insert(p) {
+        return Stored::NoRoom;
+    }
+    active.push(p);
+    Stored::Yes
 }
 
 /// A pick index drawn ahead, uniform over `0..bound` with `bound >= len`
@@ -574,22 +723,68 @@ mod tests {
     }
 
     #[test]
-    fn a_cap_rescues_a_huge_box() {
+    fn a_huge_box_runs_until_the_budget() {
         let huge = Domain::from_extent([1e6, 1e6]).unwrap();
-        assert!(
-            matches!(
-                PoissonDisk2::new(huge, 1e-3),
-                Err(Error::GridTooLarge { .. })
-            ),
-            "uncapped"
-        );
-        let capped = PoissonDisk2::builder(huge, 1e-3)
-            .max_points(Some(100))
+        let budget = 1 << 20;
+        let uncapped = PoissonDisk2::builder(huge, 1e-3)
+            .max_grid_bytes(budget)
             .build()
             .unwrap();
-        let mut it = capped.iter_seeded(3);
+        let mut it = uncapped.iter_seeded(3);
         assert_eq!(it.layout(), GridLayout::Sparse, "sparse");
+        let mut made = 0u64;
+        while it.next().is_some() {
+            made += 1;
+            assert!(it.heap_bytes() <= budget, "{} bytes", it.heap_bytes());
+        }
+        assert!(made > 1000, "only {made} points in 1 MiB");
+        assert_eq!(
+            it.error(),
+            Some(Error::MemoryBudgetExceeded {
+                points: made,
+                budget
+            }),
+            "the reason is kept"
+        );
+        assert_eq!(it.next(), None, "fused");
+        assert_eq!(
+            uncapped.generate_seeded(3),
+            Err(Error::MemoryBudgetExceeded {
+                points: made,
+                budget
+            }),
+            "generate reports it"
+        );
+        let capped = uncapped.to_builder().max_points(Some(100)).build().unwrap();
+        let mut it = capped.iter_seeded(3);
         assert_eq!(it.by_ref().count(), 100, "capped count");
+        assert_eq!(it.error(), None, "a cap is no error");
+    }
+
+    #[test]
+    fn a_box_for_one_point_ends_after_it() {
+        for (extent, periodic, r) in [
+            ([1.0, 1.0], [false; 2], 1.5),
+            ([1.0, 1.0], [true; 2], 0.75),
+            ([0.9, 1.0], [true, false], 1e6),
+        ] {
+            let d = Domain::from_extent(extent).unwrap().with_periodic(periodic);
+            let s = PoissonDisk2::builder(d, r)
+                .attempts(MAX_ATTEMPTS)
+                .build()
+                .unwrap();
+            let mut it = s.iter_seeded(1);
+            assert!(it.next().is_some(), "one point");
+            assert!(
+                it.active.is_empty(),
+                "{extent:?} {periodic:?} {r}: no throws"
+            );
+        }
+        // Just wide enough for two points: the shortcut must not fire.
+        let d = Domain::from_extent([1.0, 1.0]).unwrap();
+        assert!(!d.holds_one_point(1.414), "the diagonal is longer");
+        let d = d.with_periodic([true; 2]);
+        assert!(!d.holds_one_point(0.7), "half-period diagonal 0.707");
     }
 
     #[test]

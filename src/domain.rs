@@ -120,6 +120,21 @@ impl<const N: usize> Domain<N> {
             .all(|(x, (lo, hi))| lo <= x && x < hi)
     }
 
+    /// Whether no two points of the box can be `radius` apart, so that any
+    /// one point is a maximal set: the largest distance between two points
+    /// (the diagonal, with half the period on periodic axes) is below
+    /// `radius` with a margin far above rounding.
+    pub(crate) fn holds_one_point(&self, radius: f64) -> bool {
+        let diameter_squared: f64 = self
+            .extent()
+            .iter()
+            .zip(&self.periodic)
+            .map(|(&e, &periodic)| if periodic { e / 2.0 } else { e })
+            .map(|d| d * d)
+            .sum();
+        diameter_squared * (1.0 + 1e-9) < radius * radius
+    }
+
     /// Whether every point within `reach` of `p` is inside the box, so that
     /// [`Self::wrap`] need not run for candidates thrown from `p`. Robust to
     /// rounding: it also asks for coordinates small against `reach` (under

@@ -33,6 +33,14 @@ pub enum Error {
     },
     /// Occurs when the number of attempts `k` is zero.
     ZeroAttempts,
+    /// Occurs when the number of attempts `k` is above
+    /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS) (65 536). A run costs about
+    /// `2·n·k` candidate throws for `n` points, so a larger `k` only makes a
+    /// run take minutes for no visible gain in packing.
+    TooManyAttempts {
+        /// The largest `k` accepted.
+        max: u32,
+    },
     /// Occurs when the box spans more than 2⁴⁰ radii on some axis. Cell
     /// indices that large lose the precision the exact search relies on, so
     /// neither a point cap nor a larger budget helps: grow the radius or
@@ -41,16 +49,31 @@ pub enum Error {
         /// The first axis that is too wide.
         axis: usize,
     },
-    /// Occurs when the background grid would need more memory than the
-    /// budget allows, on the dense layout and on the sparse one (whose size is
-    /// bounded by the most points that fit in the box, or by the point cap).
-    /// Raise the budget, cap the number of points, or grow the radius.
+    /// Occurs, from `build()`, when what the background grid must allocate
+    /// before its first point (the dense layout's cells and search
+    /// stencils, or one point's worth of the sparse layout) is already over
+    /// the budget. Only certain failures are reported up front: a job whose
+    /// points may fit is started, and stops with
+    /// [`MemoryBudgetExceeded`](Self::MemoryBudgetExceeded) if they do not.
     GridTooLarge {
-        /// The smallest number of bytes either layout would need, saturated
+        /// The bytes the smallest feasible layout needs up front, saturated
         /// at `u64::MAX`; always more than `budget`, or `u64::MAX`. `u64::MAX`
         /// also stands for a grid that no budget makes possible, such as a
         /// dense grid that would hold 2³² points or more.
         needed: u64,
+        /// The budget in force.
+        budget: u64,
+    },
+    /// Occurs when a run stops because storing its next point would take
+    /// the memory in use (the grid, its points and the active list) past
+    /// the budget. Reported by [`Iter::error`](crate::Iter::error) and by
+    /// [`PoissonDisk::generate`](crate::PoissonDisk::generate). The points
+    /// already yielded are a valid set (every guarantee holds for them);
+    /// it is just not complete. Raise the budget, cap the number of points
+    /// or grow the radius.
+    MemoryBudgetExceeded {
+        /// How many points had been made when the run stopped.
+        points: u64,
         /// The budget in force.
         budget: u64,
     },
@@ -73,6 +96,9 @@ impl fmt::Display for Error {
                 write!(f, "the box extent hi - lo on axis {axis} overflows f64")
             }
             Self::ZeroAttempts => f.write_str("the number of attempts k must be at least 1"),
+            Self::TooManyAttempts { max } => {
+                write!(f, "the number of attempts k must be at most {max}")
+            }
             Self::BoxTooWide { axis } => write!(
                 f,
                 "the box spans more than 2^40 radii on axis {axis}: grow the radius or shrink the box"
@@ -84,6 +110,11 @@ impl fmt::Display for Error {
             Self::GridTooLarge { needed, budget } => write!(
                 f,
                 "the background grid needs {needed} bytes, over the budget of {budget} bytes"
+            ),
+            Self::MemoryBudgetExceeded { points, budget } => write!(
+                f,
+                "the run stopped after {points} points: the next one would take its memory past \
+                 the budget of {budget} bytes (the points made are valid, but not complete)"
             ),
         }
     }

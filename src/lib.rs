@@ -8,7 +8,7 @@
 //! ```
 //! use bridson::{Domain, PoissonDisk2};
 //! let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.05)?;
-//! let points = sampler.generate_seeded(7);
+//! let points = sampler.generate_seeded(7)?;
 //! for (i, a) in points.iter().enumerate() {
 //!     for b in &points[..i] {
 //!         let d2 = (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
@@ -39,16 +39,20 @@
 //!    points are stored as `f64`, never rounded to `f32`.
 //! 2. Every point lies in the half-open box: `lo <= x < hi` on every axis.
 //! 3. Nothing panics, aborts or allocates without bound on any input: bad
-//!    parameters are an [`Error`] from the constructor, and the grid's memory
-//!    is checked against a budget before it is allocated.
+//!    parameters are an [`Error`] from the constructor, and the heap a run
+//!    holds (grid, stencils, points, active list) is counted against a
+//!    budget before each allocation; a run that would outgrow it stops,
+//!    with [`Error::MemoryBudgetExceeded`] from [`Iter::error`], its points
+//!    so far still valid.
 //! 4. The set is maximal to `k` attempts: the stream ends only when every
 //!    point has failed `k` candidate throws around it.
 //!
 //! # Limits
 //! What each awkward input gives. Errors come from [`Domain::new`] (box) or
 //! [`Builder::build`] (everything else), checked in this order: dimension,
-//! box, radius, attempts, grid. Each row is a test in
-//! `tests/invalid_input.rs`; the fuzz targets in `fuzz/` check the rest.
+//! box, radius, attempts, grid; the budget is then checked as the run
+//! grows. Each row is a test in `tests/invalid_input.rs` or
+//! `tests/memory_budget.rs`; the fuzz targets in `fuzz/` check the rest.
 //!
 //! | Input | Outcome |
 //! |---|---|
@@ -60,11 +64,13 @@
 //! | negative, subnormal or far-from-zero bounds | ordinary values: valid points |
 //! | radius NaN, `±∞`, `<= 0`, subnormal, outside `1e-150 ..= 1e150` | [`Error::InvalidRadius`] |
 //! | box thinner than `r` on some axis (bounded or periodic) | valid points: a row, or a single point |
+//! | `r` far larger than the box (a radius in the wrong units: `r = 200` in a unit box) | one point, at once, in a few kilobytes: the search reach stops at the box (periodic: at one period), and a box whose diameter is below `r` ends after its first point |
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
-//! | `r` tiny against the box (within 2⁴⁰ radii) | [`Error::GridTooLarge`] `{ needed, budget }` (`needed` saturated at `u64::MAX`), unless a point cap or a larger budget makes a grid fit |
-//! | [`Builder::max_grid_bytes`] | checked in `build()`, before anything is allocated; `0` refuses every grid. The budget bounds the planned grid ([`PoissonDisk::grid_bytes`]); the active list and hash-map growth come on top (peak heap measured at up to 1.2× `grid_bytes`). With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
+//! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Iter::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
+//! | [`Builder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Iter::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
 //! | `k = 0` | [`Error::ZeroAttempts`] |
-//! | huge `k`, up to `u32::MAX` | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. `k = u32::MAX` costs minutes per point, hours per run. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
+//! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
+//! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
 //! | point cap `Some(0)` | an empty stream |
 //! | point cap `Some(c)` | the first `c` points of the uncapped stream; also bounds the sparse grid's memory |
 //! | point cap `Some(u64::MAX)` | the same as `None` |
@@ -97,9 +103,9 @@
 //! pick is drawn two picks early, so that its neighbourhood is fetched from
 //! memory while earlier picks run (a cache hint), and on Linux the grid asks
 //! for transparent huge pages (a paging hint): the crate's two `unsafe`
-//! blocks. From 5-D up (or when the dense grid would exceed the memory
-//! budget) a sparse hash grid is used, whose memory grows with the number of
-//! points. `README.md` has measured throughput against a textbook
+//! blocks. From 5-D up (or when the dense grid, full, would exceed the
+//! memory budget) a sparse hash grid is used, whose memory grows with the
+//! number of points. `README.md` has measured throughput against a textbook
 //! implementation.
 #![doc(test(attr(deny(warnings))))]
 // No panics on user input: library code neither unwraps nor indexes
@@ -128,6 +134,7 @@
 mod annulus;
 mod blockers;
 mod bridson;
+mod budget;
 mod density;
 mod domain;
 mod error;
@@ -142,7 +149,7 @@ mod vector;
 
 pub use crate::annulus::Candidates;
 pub use crate::bridson::{
-    Builder, DEFAULT_ATTEMPTS, Iter, PoissonDisk, PoissonDisk2, PoissonDisk3,
+    Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
 };
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;

@@ -5,7 +5,8 @@
 mod common;
 
 use bridson::{
-    Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, PoissonDisk, PoissonDisk2,
+    Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, MAX_ATTEMPTS, PoissonDisk,
+    PoissonDisk2,
 };
 
 fn unit_square() -> Domain<2> {
@@ -313,27 +314,31 @@ impl rand::TryRng for CountingRng {
     }
 }
 
-/// `k` is any `u32 >= 1`, and a point retires after exactly `k` failed
-/// candidates: in a periodic cell shorter than `r` (room for one point)
-/// the 2-D annulus makes 2 draws for the first point, 1 to pick it, 1 to
-/// draw the next pick ahead and 1 per candidate, so the stream ends after
-/// `k + 4` draws, plus fewer than 8 offsets drawn ahead and not used (the
-/// sampler draws 8 at a time).
+/// `k` is any `u32` in `1..=MAX_ATTEMPTS`, and a point retires after
+/// exactly `k` failed candidates: in a 1 × 0.001 strip at `r = 0.999`, a
+/// first point away from the ends has every candidate land outside (the
+/// box is just long enough that the one-point shortcut does not apply). The
+/// 2-D annulus makes 2 draws for the first point, 1 to pick it, 1 to draw
+/// the next pick ahead and 1 per candidate, so the stream ends after `k + 4`
+/// draws, plus fewer than 8 offsets drawn ahead and not used (the sampler
+/// draws 8 at a time).
 #[test]
 fn large_attempts_cost_exactly_k_candidates_per_retired_point() {
-    let cell = Domain::from_extent([0.03, 0.05])
-        .expect("box")
-        .with_periodic([true, true]);
-    for k in [1, 30, 1 << 16] {
+    let strip = Domain::from_extent([1.0, 0.001]).expect("box");
+    for k in [1, 30, MAX_ATTEMPTS] {
         for layout in LAYOUTS {
-            let s = PoissonDisk2::builder(cell, 0.1)
+            let s = PoissonDisk2::builder(strip, 0.999)
                 .attempts(k)
                 .layout(layout)
                 .build()
-                .expect("any k >= 1 is valid");
+                .expect("any k in 1..=MAX_ATTEMPTS is valid");
             let mut rng = CountingRng::new(4);
-            let n = s.iter(&mut rng).count();
-            assert_eq!(n, 1, "k = {k}, {layout:?}: one point fits");
+            let points: Vec<[f64; 2]> = s.iter(&mut rng).collect();
+            assert_eq!(points.len(), 1, "k = {k}, {layout:?}: one point");
+            assert!(
+                (0.002..0.998).contains(&points[0][0]),
+                "seed 4 must put the first point away from the ends: {points:?}"
+            );
             let needed = u64::from(k) + 4;
             assert!(
                 (needed..needed + 8).contains(&rng.draws),
@@ -344,22 +349,45 @@ fn large_attempts_cost_exactly_k_candidates_per_retired_point() {
     }
 }
 
-/// `k = u32::MAX` is accepted, and the stream is lazy: with annulus
-/// candidates the first points come at once. A full run is another matter:
-/// every point retires only after `k` failed throws, and points start
-/// retiring as soon as the first ones are surrounded, so a run costs about
-/// `n·k` throws whatever the cap (hours for `u32::MAX`). 2-D
-/// `Candidates::Sphere` is slow even sooner: its `k` directions are `2π/k`
-/// apart, so a parent blocked on one side spends up to about `k` attempts
-/// turning past its neighbour (not run here; see the `# Limits` table in the
-/// crate docs).
+/// A box that holds only one point (its diameter, or half-period diagonal,
+/// is below `r`) ends after it, without throwing a candidate, whatever `k`.
 #[test]
-fn huge_attempts_are_accepted_and_the_stream_is_lazy() {
+fn a_box_for_one_point_ends_at_once() {
+    let cell = Domain::from_extent([0.03, 0.05])
+        .expect("box")
+        .with_periodic([true, true]);
+    for k in [1, MAX_ATTEMPTS] {
+        for layout in LAYOUTS {
+            let s = PoissonDisk2::builder(cell, 0.1)
+                .attempts(k)
+                .layout(layout)
+                .build()
+                .expect("valid");
+            let mut rng = CountingRng::new(4);
+            assert_eq!(s.iter(&mut rng).count(), 1, "k = {k}, {layout:?}");
+            assert_eq!(rng.draws, 2, "k = {k}, {layout:?}: the first point only");
+        }
+    }
+}
+
+/// `k = MAX_ATTEMPTS` is accepted, and the stream is lazy: with annulus
+/// candidates the first points come at once. A full run is another matter:
+/// every point retires only after `k` failed throws, so a run costs about
+/// `n·k` throws whatever the cap. Above `MAX_ATTEMPTS`, `build()` refuses.
+#[test]
+fn huge_attempts_are_refused_and_the_largest_is_lazy() {
     let roomy = Domain::from_extent([1000.0, 1000.0]).expect("box");
+    for k in [MAX_ATTEMPTS + 1, u32::MAX] {
+        assert_eq!(
+            PoissonDisk2::builder(roomy, 1.0).attempts(k).build(),
+            Err(Error::TooManyAttempts { max: MAX_ATTEMPTS }),
+            "k = {k}"
+        );
+    }
     let s = PoissonDisk2::builder(roomy, 1.0)
-        .attempts(u32::MAX)
+        .attempts(MAX_ATTEMPTS)
         .build()
-        .expect("k = u32::MAX is valid");
+        .expect("k = MAX_ATTEMPTS is valid");
     let mut rng = CountingRng::new(5);
     let points: Vec<[f64; 2]> = s.iter(&mut rng).take(4).collect();
     assert_eq!(points.len(), 4, "four points");
@@ -380,23 +408,82 @@ fn huge_box() -> Domain<2> {
     Domain::from_extent([1e6, 1e6]).expect("valid box")
 }
 
-#[test]
-fn tiny_radius_in_a_huge_box_is_grid_too_large() {
-    match PoissonDisk2::new(huge_box(), 1e-3) {
-        Err(Error::GridTooLarge { needed, budget }) => {
-            assert_eq!(budget, DEFAULT_MAX_GRID_BYTES, "the default budget");
-            assert!(needed > budget, "needed {needed} <= budget {budget}");
-        }
-        other => panic!("expected GridTooLarge, got {other:?}"),
+/// Runs `sampler` to its end, checking after every point that the memory
+/// it holds is within its budget and that its points are valid; returns
+/// the count and why the run ended early, if it did.
+fn run_within_budget<const N: usize>(
+    sampler: &PoissonDisk<N>,
+    seed: u64,
+) -> (usize, Option<Error>) {
+    let budget = sampler.max_grid_bytes();
+    let mut it = sampler.iter_seeded(seed);
+    let mut points = Vec::new();
+    while let Some(p) = it.next() {
+        points.push(p);
+        assert!(
+            it.heap_bytes() <= budget,
+            "{} bytes held after {} points, budget {budget}",
+            it.heap_bytes(),
+            points.len()
+        );
     }
+    let d = sampler.domain();
+    if let Err(report) =
+        common::check_points(&points, sampler.radius(), d.lo(), d.hi(), d.periodic())
+    {
+        panic!("{report}");
+    }
+    (points.len(), it.error())
+}
+
+/// A tiny radius in a huge box: no layout is refused up front for the
+/// sparse grid (it allocates nothing before its first point); the run
+/// stops cleanly when the next point would take it past the budget, and
+/// says so. A dense grid of 1e18 cells is refused by `build()`.
+#[test]
+fn tiny_radius_in_a_huge_box_stops_at_the_budget() {
+    let budget = 1 << 20;
+    let s = PoissonDisk2::builder(huge_box(), 1e-3)
+        .max_grid_bytes(budget)
+        .build()
+        .expect("the sparse grid starts empty");
+    assert_eq!(s.resolved_layout(), GridLayout::Sparse, "sparse");
+    let (n, error) = run_within_budget(&s, 1);
+    assert!(n > 1000, "{n} points in 1 MiB");
+    assert_eq!(
+        error,
+        Some(Error::MemoryBudgetExceeded {
+            points: n as u64,
+            budget
+        }),
+        "the reason"
+    );
+    assert_eq!(
+        s.generate_seeded(1),
+        Err(Error::MemoryBudgetExceeded {
+            points: n as u64,
+            budget
+        }),
+        "generate reports it too"
+    );
+    assert_eq!(
+        PoissonDisk2::builder(huge_box(), 1e-3)
+            .layout(GridLayout::Dense)
+            .build(),
+        Err(Error::GridTooLarge {
+            needed: u64::MAX,
+            budget: DEFAULT_MAX_GRID_BYTES
+        }),
+        "a dense grid of 1e18 cells"
+    );
 }
 
 #[test]
-fn a_point_cap_makes_the_huge_box_feasible() {
+fn a_point_cap_makes_the_huge_box_complete() {
     let capped = PoissonDisk2::builder(huge_box(), 1e-3)
         .max_points(Some(1000))
         .build()
-        .expect("a cap of 1000 points fits the default budget");
+        .expect("the sparse grid starts empty");
     assert_eq!(
         capped.resolved_layout(),
         GridLayout::Sparse,
@@ -407,23 +494,16 @@ fn a_point_cap_makes_the_huge_box_feasible() {
         "planned {} bytes",
         capped.grid_bytes()
     );
-    let n = assert_valid(&capped, 3, usize::MAX);
-    assert!((1..=1000).contains(&n), "{n} points, cap 1000");
+    let (n, error) = run_within_budget(&capped, 3);
     assert_eq!(n, 1000, "the box holds far more than 1000 points");
-    // Lifting the cap again is too large.
-    assert!(
-        matches!(
-            capped.to_builder().max_points(None).build(),
-            Err(Error::GridTooLarge { .. })
-        ),
-        "no cap: too large"
-    );
+    assert_eq!(error, None, "a cap is no error");
 }
 
-/// The memory budget is checked by `build()`, before anything is
-/// allocated: a budget of 0 refuses every layout, an astronomical grid is
-/// refused with `needed` saturated at `u64::MAX`, and an accepted sampler's
-/// planned grid never exceeds its budget.
+/// The budget `build()` checks is what a grid allocates before its first
+/// point: a budget of 0 refuses every layout, an astronomical dense grid
+/// is refused with `needed` saturated at `u64::MAX`, and an accepted
+/// sampler's up-front bytes never exceed its budget. The rest is counted as
+/// the points come.
 #[test]
 fn the_budget_is_checked_by_build() {
     for layout in LAYOUTS {
@@ -439,14 +519,6 @@ fn the_budget_is_checked_by_build() {
             other => panic!("{layout:?}: expected GridTooLarge, got {other:?}"),
         }
     }
-    assert_eq!(
-        PoissonDisk2::new(huge_box(), 1e-3),
-        Err(Error::GridTooLarge {
-            needed: u64::MAX,
-            budget: DEFAULT_MAX_GRID_BYTES
-        }),
-        "a 1e18-cell dense grid and an uncapped sparse one"
-    );
     for budget in [1 << 12, 1 << 16, 1 << 20, 1 << 24, DEFAULT_MAX_GRID_BYTES] {
         for layout in LAYOUTS {
             for cap in [None, Some(100)] {
@@ -461,6 +533,14 @@ fn the_budget_is_checked_by_build() {
                         "{layout:?}, cap {cap:?}: planned {} > budget {budget}",
                         s.grid_bytes()
                     );
+                    if budget <= 1 << 20 {
+                        let (n, error) = run_within_budget(&s, 2);
+                        let complete = cap.map_or(error.is_none(), |c| n as u64 == c);
+                        assert!(
+                            complete || matches!(error, Some(Error::MemoryBudgetExceeded { .. })),
+                            "{layout:?}, cap {cap:?}, budget {budget}: {n} points, {error:?}"
+                        );
+                    }
                 }
             }
         }
@@ -474,15 +554,15 @@ fn a_cap_of_u64_max_is_no_cap() {
     let uncapped = builder.build().expect("valid");
     let capped = builder.max_points(Some(u64::MAX)).build().expect("valid");
     assert_eq!(
-        capped.generate_seeded(8),
-        uncapped.generate_seeded(8),
+        capped.generate_seeded(8).unwrap(),
+        uncapped.generate_seeded(8).unwrap(),
         "same points"
     );
     let seven = builder.max_points(Some(7)).build().expect("valid");
     assert_eq!(seven.iter_seeded(8).size_hint(), (0, Some(7)), "size_hint");
     assert_eq!(
-        seven.generate_seeded(8),
-        uncapped.generate_seeded(8)[..7],
+        seven.generate_seeded(8).unwrap(),
+        uncapped.generate_seeded(8).unwrap()[..7],
         "a cap is a prefix of the uncapped stream"
     );
 }
@@ -490,7 +570,7 @@ fn a_cap_of_u64_max_is_no_cap() {
 /// The same through a deserialised configuration.
 #[cfg(feature = "serde")]
 #[test]
-fn a_point_cap_makes_the_huge_box_feasible_from_json() {
+fn a_point_cap_makes_the_huge_box_complete_from_json() {
     let json = r#"{
         "domain": {"lo": [0.0, 0.0], "hi": [1e6, 1e6], "periodic": [false, false]},
         "radius": 1e-3,
@@ -498,50 +578,46 @@ fn a_point_cap_makes_the_huge_box_feasible_from_json() {
     }"#;
     let capped: PoissonDisk2 = serde_json::from_str(json).expect("capped sampler fits");
     let n = assert_valid(&capped, 3, usize::MAX);
-    assert!((1..=1000).contains(&n), "{n} points, cap 1000");
-    let uncapped = json.replace("\"max_points\": 1000", "\"max_points\": null");
-    let err = serde_json::from_str::<PoissonDisk2>(&uncapped).expect_err("no cap: too large");
+    assert_eq!(n, 1000, "{n} points, cap 1000");
+    let dense = json.replace("\"max_points\": 1000", "\"layout\": \"Dense\"");
+    let err = serde_json::from_str::<PoissonDisk2>(&dense).expect_err("dense: too large");
     assert!(
         err.to_string().contains("budget"),
         "the message names the budget: {err}"
     );
 }
 
-/// A box whose dense grid fits the default budget but not a small one; a
-/// point cap then lets the sparse grid fit.
+/// A box whose dense grid fits the default budget but not a small one:
+/// under the small budget the sparse grid runs until the budget, and a
+/// point cap within it completes.
 #[test]
-fn a_point_cap_makes_a_small_budget_feasible() {
+fn a_small_budget_stops_the_run_and_a_cap_completes_it() {
     let domain = Domain::from_extent([10.0, 10.0]).expect("valid box");
-    assert!(
-        PoissonDisk2::new(domain, 0.01).is_ok(),
-        "fits the default 1 GiB"
+    assert_eq!(
+        PoissonDisk2::new(domain, 0.01).map(|s| s.resolved_layout()),
+        Ok(GridLayout::Dense),
+        "dense fits the default 1 GiB"
     );
     let budget = 1 << 20;
     let small = PoissonDisk2::builder(domain, 0.01).max_grid_bytes(budget);
-    match small.build() {
-        Err(Error::GridTooLarge {
-            needed,
-            budget: reported,
-        }) => {
-            assert_eq!(reported, budget, "the budget in force is reported");
-            assert!(needed > budget, "needed {needed} <= budget {budget}");
-        }
-        other => panic!("expected GridTooLarge without a cap, got {other:?}"),
-    }
+    let uncapped = small.build().expect("the sparse grid starts empty");
+    assert_eq!(uncapped.resolved_layout(), GridLayout::Sparse, "sparse");
+    let (n, error) = run_within_budget(&uncapped, 4);
+    assert!(
+        matches!(error, Some(Error::MemoryBudgetExceeded { points, budget: b })
+            if points == n as u64 && b == budget),
+        "{n} points, {error:?}"
+    );
     let capped = small
         .max_points(Some(1000))
         .build()
         .expect("a cap of 1000 points fits 1 MiB");
-    assert_eq!(
-        capped.resolved_layout(),
-        GridLayout::Sparse,
-        "sparse under the cap"
-    );
     assert!(capped.grid_bytes() <= budget, "planned within budget");
-    let n = assert_valid(&capped, 4, usize::MAX);
+    let (n, error) = run_within_budget(&capped, 4);
     assert_eq!(
-        n, 1000,
-        "a 10 × 10 box at r = 0.01 holds far more than 1000"
+        (n, error),
+        (1000, None),
+        "a 10 × 10 box at r = 0.01 holds far more"
     );
 }
 
@@ -636,7 +712,19 @@ fn display_messages_name_the_failed_condition() {
     let Error::GridTooLarge { needed, budget } = dense_over else {
         panic!("expected GridTooLarge, got {dense_over:?}");
     };
-    let huge = PoissonDisk2::new(huge_box(), 1e-3).expect_err("too large");
+    let huge = PoissonDisk2::builder(huge_box(), 1e-3)
+        .layout(GridLayout::Dense)
+        .build()
+        .expect_err("too large");
+    let stopped = PoissonDisk2::builder(huge_box(), 1e-3)
+        .max_grid_bytes(1 << 16)
+        .build()
+        .expect("sparse")
+        .generate_seeded(1)
+        .expect_err("over budget");
+    let Error::MemoryBudgetExceeded { points, .. } = stopped else {
+        panic!("expected MemoryBudgetExceeded, got {stopped:?}");
+    };
     let cases: Vec<(Error, Vec<String>)> = vec![
         (
             Domain::<0>::new([], []).expect_err("N = 0"),
@@ -675,6 +763,21 @@ fn display_messages_name_the_failed_condition() {
         (
             huge,
             vec!["budget".into(), format!("{DEFAULT_MAX_GRID_BYTES} bytes")],
+        ),
+        (
+            stopped,
+            vec![
+                format!("after {points} points"),
+                "budget of 65536 bytes".into(),
+                "valid".into(),
+            ],
+        ),
+        (
+            PoissonDisk2::builder(unit_square(), 0.1)
+                .attempts(u32::MAX)
+                .build()
+                .expect_err("k too large"),
+            vec!["attempts".into(), format!("at most {MAX_ATTEMPTS}")],
         ),
     ];
     for (error, words) in cases {
@@ -800,7 +903,7 @@ fn a_zero_cap_yields_nothing() {
         .max_points(Some(0))
         .build()
         .expect("valid");
-    assert_eq!(s.generate_seeded(1).len(), 0, "cap 0");
+    assert_eq!(s.generate_seeded(1).unwrap().len(), 0, "cap 0");
     assert_eq!(s.iter_seeded(1).size_hint(), (0, Some(0)), "size_hint");
 }
 

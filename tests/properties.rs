@@ -167,7 +167,9 @@ fn check_case<const N: usize>(c: &Case<N>) -> Result<(), TestCaseError> {
     prop_assert_eq!(sparse.resolved_layout(), GridLayout::Sparse, "{}", ctx);
 
     // The guarantees, checked by the oracle.
-    let points = sparse.generate_seeded(c.seed);
+    let points = sparse
+        .generate_seeded(c.seed)
+        .map_err(|e| TestCaseError::fail(format!("{ctx}: {e}")))?;
     let n = points.len();
     prop_assert!(n >= 1, "{}: no point at all", ctx);
     if let Err(report) = common::check_points(&points, c.radius, c.lo, c.hi, c.periodic) {
@@ -177,7 +179,8 @@ fn check_case<const N: usize>(c: &Case<N>) -> Result<(), TestCaseError> {
     // Same seed, same points (a freshly built sampler, a fresh run).
     let again = sampler(c, GridLayout::Sparse)
         .map_err(|e| TestCaseError::fail(format!("{ctx}: {e}")))?
-        .generate_seeded(c.seed);
+        .generate_seeded(c.seed)
+        .map_err(|e| TestCaseError::fail(format!("{ctx}: {e}")))?;
     prop_assert!(
         again == points,
         "{}: a second run with the same seed differs",
@@ -215,7 +218,8 @@ fn check_case<const N: usize>(c: &Case<N>) -> Result<(), TestCaseError> {
         .max_points(Some(u64::try_from(cap).expect("small")))
         .build()
         .map_err(|e| TestCaseError::fail(format!("{ctx}: cap {cap} rejected: {e}")))?
-        .generate_seeded(c.seed);
+        .generate_seeded(c.seed)
+        .map_err(|e| TestCaseError::fail(format!("{ctx}: cap {cap}: {e}")))?;
     prop_assert!(
         capped[..] == points[..cap.min(n)],
         "{}: max_points(Some({})) gave {} points, not the first {} of {}",

@@ -321,7 +321,8 @@ mod tests {
         let r = 0.05;
         let pts = bridson::PoissonDisk2::new(d, r)
             .expect("sampler")
-            .generate_seeded(3);
+            .generate_seeded(3)
+            .unwrap();
         let s = pair_stats(&pts, d, r);
         assert_eq!(s.closer_than_radius, 0, "the guarantee");
         let min = s.min_distance.expect("pairs");

@@ -19,7 +19,7 @@
 
 use crate::bytes::Bytes;
 use crate::common;
-use bridson::{Candidates, Domain, Error, GridLayout, PoissonDisk};
+use bridson::{Candidates, Domain, Error, GridLayout, MAX_ATTEMPTS, PoissonDisk};
 
 /// Most points generated per execution, by dimension (index `N - 1`): the
 /// O(n²) oracle and the sampler together stay within a few milliseconds.
@@ -274,6 +274,7 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
         "{ctx}: accepted a radius outside 1e-150..=1e150"
     );
     assert!(k >= 1, "{ctx}: accepted k = 0");
+    assert!(k <= MAX_ATTEMPTS, "{ctx}: accepted k = {k}");
     assert!(
         sampler.grid_bytes() <= budget,
         "{ctx}: planned {} bytes, over the budget",
@@ -299,7 +300,7 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
     else {
         return;
     };
-    let points = check_generate(&ctx, &small, seed, gen_cap);
+    let (points, complete) = check_generate(&ctx, &small, seed, gen_cap);
 
     // The layout never changes the points.
     if compare_layouts {
@@ -307,8 +308,12 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
             if other == small.resolved_layout() {
                 continue;
             }
-            if let Ok(s) = small.to_builder().layout(other).build() {
-                let again = s.generate_seeded(seed);
+            // A run cut short by the budget stops at a point that depends
+            // on the layout's memory, so only complete runs compare.
+            if let Ok(s) = small.to_builder().layout(other).build()
+                && complete
+                && let Ok(again) = s.generate_seeded(seed)
+            {
                 assert!(
                     again == points,
                     "{ctx}: {other:?} gives other points than {:?} ({} vs {})",
@@ -330,6 +335,11 @@ fn check_build_error(ctx: &str, e: Error, r: f64, k: u32, budget: u64) {
             assert!(radius_ok, "{ctx}: ZeroAttempts before InvalidRadius");
             assert_eq!(k, 0, "{ctx}: ZeroAttempts for k = {k}");
         }
+        Error::TooManyAttempts { max } => {
+            assert!(radius_ok, "{ctx}: TooManyAttempts before InvalidRadius");
+            assert_eq!(max, MAX_ATTEMPTS, "{ctx}: the wrong maximum");
+            assert!(k > max, "{ctx}: TooManyAttempts for k = {k}");
+        }
         Error::GridTooLarge { needed, budget: b } => {
             assert!(radius_ok && k > 0, "{ctx}: {e:?} hides a bad radius or k");
             assert_eq!(b, budget, "{ctx}: the wrong budget reported");
@@ -346,25 +356,52 @@ fn check_build_error(ctx: &str, e: Error, r: f64, k: u32, budget: u64) {
     }
 }
 
-/// Generates and checks the points of `sampler` for `seed`.
+/// Generates and checks the points of `sampler` for `seed`, and the memory
+/// the run holds, after every point; returns them and whether the run was
+/// complete (not cut short by the budget).
 pub(crate) fn check_generate<const N: usize>(
     ctx: &str,
     sampler: &PoissonDisk<N>,
     seed: u64,
     cap: u64,
-) -> Vec<[f64; N]> {
+) -> (Vec<[f64; N]>, bool) {
     let d = sampler.domain();
-    let points = sampler.generate_seeded(seed);
+    let budget = sampler.max_grid_bytes();
+    let mut it = sampler.iter_seeded(seed);
+    let mut points = Vec::new();
+    while let Some(p) = it.next() {
+        points.push(p);
+        assert!(
+            it.heap_bytes() <= budget,
+            "{ctx}: {} bytes held, over the budget of {budget}",
+            it.heap_bytes()
+        );
+    }
+    let complete = match it.error() {
+        None => true,
+        Some(Error::MemoryBudgetExceeded {
+            points: n,
+            budget: b,
+        }) => {
+            assert_eq!(b, budget, "{ctx}: the wrong budget reported");
+            assert_eq!(Ok(n), u64::try_from(points.len()), "{ctx}: wrong count");
+            false
+        }
+        Some(other) => panic!("{ctx}: the run ended with {other:?}"),
+    };
     assert!(
         u64::try_from(points.len()).is_ok_and(|n| n <= cap),
         "{ctx}: {} points over the cap {cap}",
         points.len()
     );
-    assert!(!points.is_empty() || cap == 0, "{ctx}: not even one point");
+    assert!(
+        !points.is_empty() || cap == 0 || !complete,
+        "{ctx}: not even one point"
+    );
     if let Err(report) =
         common::check_points(&points, sampler.radius(), d.lo(), d.hi(), d.periodic())
     {
         panic!("{ctx}, {:?} layout: {report}", sampler.resolved_layout());
     }
-    points
+    (points, complete)
 }

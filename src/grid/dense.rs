@@ -18,6 +18,7 @@
 
 use super::{DensePlan, NeighbourGrid};
 use crate::blockers::Blockers;
+use crate::budget::{reserve_one, vec_bytes};
 use crate::domain::Domain;
 use crate::vector::{distance_squared, periodic_distance_squared};
 
@@ -64,6 +65,8 @@ pub(crate) struct Dense<const N: usize> {
     /// The full stencil without the centre cell, in address order (up to
     /// 3-D).
     seed_offsets: Vec<isize>,
+    /// Heap bytes of the stencils, kept for [`NeighbourGrid::bytes`].
+    stencil_bytes: u64,
     periods: [f64; N],
     any_periodic: bool,
     radius_squared: f64,
@@ -86,19 +89,10 @@ impl<const N: usize> Dense<N> {
         // Before the first write: pages get their size when first touched.
         crate::huge_pages::advise(&cells);
         cells.resize(total, EMPTY);
-        // Room for every point the plan allows (its bytes are in the
-        // budget), so that the vector never moves: untouched, the room
-        // costs address space only, and huge pages can back it from the
-        // start. Should so much address space be refused, it grows as
-        // needed instead.
+        // The sentinel; the points grow as they come, within the budget
+        // ([`NeighbourGrid::reserve`]).
         let mut points = Vec::new();
-        if points
-            .try_reserve_exact(plan.points.saturating_add(1))
-            .is_err()
-        {
-            points.try_reserve(1024).ok()?;
-        }
-        crate::huge_pages::advise(&points);
+        points.try_reserve_exact(1).ok()?;
         points.push([FAR; N]);
         let full = Stencil::new(plan, &stride, radius, &[0; N], 1)?;
         let mut seed_offsets: Vec<isize> = if N <= 3 {
@@ -124,9 +118,17 @@ impl<const N: usize> Dense<N> {
             }
             stencils.push(Stencil::new(plan, &stride, radius, &part, parts(N))?);
         }
+        let stencil_bytes = stencils
+            .iter()
+            .chain([&full])
+            .map(Stencil::bytes)
+            .sum::<u64>()
+            .saturating_add(vec_bytes(&stencils))
+            .saturating_add(vec_bytes(&seed_offsets));
         Some(Self {
             cells,
             points,
+            stencil_bytes,
             lo: domain.lo(),
             inv_side: plan.side.map(|s| 1.0 / s),
             counts: plan.cells,
@@ -364,6 +366,22 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         self.prefetch_stencil(self.base(&self.cell_of(p)), &self.full);
     }
 
+    fn bytes(&self) -> u64 {
+        vec_bytes(&self.cells)
+            .saturating_add(self.stencil_bytes)
+            .saturating_add(vec_bytes(&self.points))
+    }
+
+    fn reserve(&mut self, _p: &[f64; N], spare: u64) -> bool {
+        let capacity = self.points.capacity();
+        let grown = reserve_one(&mut self.points, spare).is_some();
+        if self.points.capacity() != capacity {
+            // Moved to a larger allocation: ask again.
+            crate::huge_pages::advise(&self.points);
+        }
+        grown
+    }
+
     #[inline(always)]
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
@@ -382,12 +400,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
             Some(slot) if *slot == EMPTY => *slot = index,
             _ => return false,
         }
-        let capacity = self.points.capacity();
         self.points.push(p);
-        if self.points.capacity() != capacity {
-            // Moved to a larger allocation: ask again.
-            crate::huge_pages::advise(&self.points);
-        }
         if self.any_periodic {
             self.write_images(&cell, index);
         }
@@ -402,6 +415,25 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
 /// they save scanning.
 const fn parts(n: usize) -> usize {
     if n <= 4 { 2 } else { 1 }
+}
+
+/// A bound on the heap bytes the stencils of an `n`-dimensional grid take,
+/// per cell of the `Π (2·reach + 1)` window they are cut from, at the peak
+/// of their construction: each kept stencil holds at most one offset (8
+/// bytes) and, in its row list grown by doubling, 32 bytes per cell; the
+/// seed list, grown by doubling too, 16 more; and the one stencil being built has a 24-byte entry
+/// per cell, the stable sort's buffer of half as many, and 16-byte row
+/// keys.
+pub(crate) fn stencil_bytes_per_cell(n: usize) -> u64 {
+    let parts_stencils = if parts(n) > 1 {
+        (parts(n) as u64).saturating_pow(u32::try_from(n).unwrap_or(u32::MAX))
+    } else {
+        0
+    };
+    parts_stencils
+        .saturating_add(1)
+        .saturating_mul(8 + 32)
+        .saturating_add(16 + 24 + 12 + 16)
 }
 
 /// The cells a candidate in one part of its cell must be checked against.
@@ -434,7 +466,9 @@ impl Stencil {
         let stride: [isize; N] = stride.map(|s| isize::try_from(s).unwrap_or(0));
         #[expect(clippy::cast_precision_loss, reason = "small counts")]
         let (parts_f, part_f) = (parts as f64, part.map(|k| k as f64));
+        let window: usize = reach.iter().map(|&p| 2 * p.unsigned_abs() + 1).product();
         let mut cells = Vec::new();
+        cells.try_reserve_exact(window).ok()?;
         let mut d = reach.map(|p| -p);
         loop {
             let mut gap2 = 0.0;
@@ -475,7 +509,12 @@ impl Stencil {
             }
         }
         cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        let offsets: Vec<isize> = cells.into_iter().map(|c| c.2).collect();
+        // A fresh vector of exactly this length (collecting in place would
+        // keep the entries' larger allocation).
+        let mut offsets: Vec<isize> = Vec::new();
+        offsets.try_reserve_exact(cells.len()).ok()?;
+        offsets.extend(cells.iter().map(|c| c.2));
+        drop(cells);
         // Rows (up to 3-D): offset `o` is `d0 + Σ d_i·stride_i` with
         // |d0| <= reach0 < stride_1 / 2, so its row is keyed by
         // `o - (o + reach0) mod stride_1`.
@@ -507,6 +546,11 @@ impl Stencil {
             offsets,
             rows: grouped,
         })
+    }
+
+    /// Heap bytes held.
+    fn bytes(&self) -> u64 {
+        vec_bytes(&self.offsets).saturating_add(vec_bytes(&self.rows))
     }
 }
 

@@ -64,10 +64,15 @@ pub(crate) struct DensePlan<const N: usize> {
     pub(crate) side: [f64; N],
     pub(crate) reach: [usize; N],
     pub(crate) eta: f64,
+    /// What the grid allocates before its first point: the padded cells
+    /// and the search stencils (a bound on their peak while built), plus
+    /// the first point and its active entry.
     pub(crate) bytes: u64,
-    /// A bound on the points the grid will store (the packing bound, the
-    /// cells, or the cap), to reserve room for up front.
-    pub(crate) points: usize,
+    /// [`bytes`](Self::bytes) plus the points the box could hold at most
+    /// (the packing bound, or the cap), doubled for the growth of the point
+    /// vector and the active list: what [`GridLayout::Auto`] compares with
+    /// the budget to choose the dense layout. Never a reason to refuse.
+    pub(crate) bytes_when_full: u64,
 }
 
 /// Geometry of a sparse grid.
@@ -77,6 +82,8 @@ pub(crate) struct SparsePlan<const N: usize> {
     pub(crate) side: [f64; N],
     pub(crate) reach: [i64; N],
     pub(crate) eta: f64,
+    /// What the first point costs: the smallest hash table and one active
+    /// entry. The sparse grid allocates nothing before it.
     pub(crate) bytes: u64,
 }
 
@@ -93,8 +100,15 @@ pub(crate) trait NeighbourGrid<const N: usize> {
     /// Starts loading the cells [`seed`](Self::seed) will read around `p`;
     /// a hint only, by default nothing.
     fn prefetch(&self, _p: &[f64; N]) {}
+    /// The heap bytes the grid holds now (see `budget.rs`).
+    fn bytes(&self) -> u64;
+    /// Makes room to [`insert`](Self::insert) `p` without allocating, if
+    /// the growth fits in `spare` more bytes at its peak; `false` if not.
+    fn reserve(&mut self, p: &[f64; N], spare: u64) -> bool;
     /// Stores `p`; returns `false` (and stores nothing) if the layout has no
     /// room for it, which the sampler treats as a failed attempt.
+    /// [`reserve`](Self::reserve) comes first: this never allocates more
+    /// than it allowed for.
     fn insert(&mut self, p: [f64; N]) -> bool;
 }
 
@@ -155,33 +169,33 @@ fn plan_dense<const N: usize>(
     let eta = rounding_margin(to_f64(max_cells));
     let mut reach = [0usize; N];
     let mut total: u64 = 1;
-    for ((r, &s), &m) in reach.iter_mut().zip(&side).zip(&counts) {
-        // Cells at |d| are needed while (|d| - 1 - η)·side < r.
-        let p = cell_count((radius / s + eta).ceil()).ok_or(u64::MAX)?;
+    let mut window: u64 = 1;
+    let axes = side.iter().zip(&counts).zip(domain.periodic());
+    for (r, ((&s, &m), periodic)) in reach.iter_mut().zip(axes) {
+        // Cells at |d| are needed while (|d| - 1 - η)·side < r, up to what
+        // the axis holds: on a bounded axis two cells of the box are at
+        // most `m - 1` apart; on a periodic one every cell has an image
+        // within `m` (see `bounded_reach`).
+        let p = bounded_reach(needed_reach(radius, s, eta), m, periodic);
         *r = usize::try_from(p).map_err(|_| u64::MAX)?;
-        let padded = p
-            .checked_mul(2)
-            .and_then(|pp| m.checked_add(pp))
-            .ok_or(u64::MAX)?;
+        let side_cells = p.checked_mul(2).ok_or(u64::MAX)?;
+        let padded = m.checked_add(side_cells).ok_or(u64::MAX)?;
         total = total.checked_mul(padded).ok_or(u64::MAX)?;
+        window = window.checked_mul(side_cells + 1).ok_or(u64::MAX)?;
     }
-    // Cells hold u32 indices; the points live in a vector bounded by the
-    // packing bound (and by one per inner cell), reserved up front; doubled
-    // for the growth slack should that reservation be refused.
+    // Cells hold u32 indices.
     let cell_bytes = total.checked_mul(4).ok_or(u64::MAX)?;
+    let stencil_bytes = window
+        .checked_mul(dense::stencil_bytes_per_cell(N))
+        .ok_or(u64::MAX)?;
+    let point = (8 * N) as u64;
+    // The sentinel and the first point, and the first active entry.
+    let bytes = cell_bytes
+        .checked_add(stencil_bytes)
+        .and_then(|b| b.checked_add(3 * point))
+        .ok_or(u64::MAX)?;
     let inner: f64 = counts.iter().map(|&m| to_f64(m)).product();
-    let points = ln_max_points(domain, radius).exp().min(inner);
-    #[expect(clippy::cast_precision_loss, reason = "N is small")]
-    let point_bytes = 2.0 * (points.ceil() + 1.0) * (8 * N) as f64;
-    if !point_bytes.is_finite() || point_bytes >= 1.8e19 {
-        return Err(u64::MAX);
-    }
-    #[expect(
-        clippy::cast_possible_truncation,
-        clippy::cast_sign_loss,
-        reason = "finite, positive and below u64::MAX"
-    )]
-    let bytes = cell_bytes.saturating_add(point_bytes as u64);
+    let mut points = ln_max_points(domain, radius).exp().min(inner);
     // u32 indices, with 0 reserved for the empty sentinel. Past that, or
     // past the address space, no budget makes a dense grid possible: report
     // it as `u64::MAX` like every other impossible grid, never as `bytes`,
@@ -193,31 +207,49 @@ fn plan_dense<const N: usize>(
     if cells.contains(&usize::MAX) || usize::try_from(total).is_err() {
         return Err(u64::MAX);
     }
-    // Below u32::MAX (checked above), so it converts exactly.
+    if let Some(cap) = max_points {
+        points = points.min(to_f64(cap));
+    }
+    // Points and active entries, each vector up to twice its length.
     #[expect(
         clippy::cast_possible_truncation,
         clippy::cast_sign_loss,
-        reason = "finite, positive and below u32::MAX"
+        reason = "finite, positive and below u32::MAX (checked above)"
     )]
-    let bound = points.ceil() as u64;
-    let points = usize::try_from(bound.min(max_points.unwrap_or(u64::MAX))).unwrap_or(usize::MAX);
+    let when_full = (points.ceil() as u64 + 1).saturating_mul(4 * point);
     Ok(DensePlan {
         cells,
         side,
         reach,
         eta,
         bytes,
-        points,
+        bytes_when_full: bytes.saturating_add(when_full),
     })
 }
 
-/// Bytes the sparse grid may use per stored point: the point, its share of
-/// a hash-map entry (key, small inline vector, control byte, load factor),
-/// and the doubling slack of the map and of the active list.
-fn sparse_bytes_per_point(n: usize) -> f64 {
-    #[expect(clippy::cast_precision_loss, reason = "N is small")]
-    let n = n as f64;
-    72.0 * n + 32.0
+/// Cells on each side that can hold a point closer than `radius` to a
+/// point of the centre cell, on an axis of cells of side `side`: while
+/// `(|d| - 1 - η)·side < r`. Saturates at `u64::MAX` (cut by
+/// [`bounded_reach`]).
+fn needed_reach(radius: f64, side: f64, eta: f64) -> u64 {
+    cell_count((radius / side + eta).ceil()).unwrap_or(u64::MAX)
+}
+
+/// The search reach on an axis of `m` cells, given the reach `r` calls
+/// for. A bounded axis needs at most `m - 1`: cells of the box are no
+/// further apart. A periodic axis needs at most `m`: a point's nearest
+/// image is within half a period, at most `⌈m/2⌉ + 1` cells away counting
+/// the rounding margin, which is at most `m` from `m = 2` up; with `m = 1`
+/// every point shares the candidate's cell on that axis, at offset 0.
+/// Bounding the reach bounds the stencil (and the padding), which would
+/// otherwise grow as `(r / side)^N` for a radius far larger than the box.
+fn bounded_reach(needed: u64, m: u64, periodic: bool) -> u64 {
+    // `m >= 1` (`cell_count`).
+    if periodic {
+        needed.min(m)
+    } else {
+        needed.min(m - 1)
+    }
 }
 
 /// Volume of the unit ball in `n` dimensions.
@@ -253,11 +285,7 @@ fn ln_max_points<const N: usize>(domain: &Domain<N>, radius: f64) -> f64 {
     ln
 }
 
-fn plan_sparse<const N: usize>(
-    domain: &Domain<N>,
-    radius: f64,
-    max_points: Option<u64>,
-) -> Result<SparsePlan<N>, u64> {
+fn plan_sparse<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<SparsePlan<N>, u64> {
     let extent = domain.extent();
     let periodic = domain.periodic();
     let mut cells = [0i64; N];
@@ -279,41 +307,18 @@ fn plan_sparse<const N: usize>(
     let mut reach = [0i64; N];
     let axes = side.iter().zip(&cells).zip(&periodic);
     for (r, ((&s, &m), &periodic)) in reach.iter_mut().zip(axes) {
-        let p = (radius / s + eta).ceil();
         // A periodic axis narrower than the reach is searched whole, once
-        // (see `Sparse::conflicts`), so its reach never needs to exceed `m`.
-        *r = match cell_count(p) {
-            Some(p) => i64::try_from(p).map_err(|_| u64::MAX)?,
-            None if periodic => m,
-            None => return Err(u64::MAX),
-        };
-        if periodic {
-            *r = (*r).min(m);
-        }
+        // (see `Sparse::visit`), and a bounded one ends at the box.
+        let m = u64::try_from(m).map_err(|_| u64::MAX)?;
+        let p = bounded_reach(needed_reach(radius, s, eta), m, periodic);
+        *r = i64::try_from(p).map_err(|_| u64::MAX)?;
     }
-    let ln_points = ln_max_points(domain, radius);
-    let mut points = ln_points.exp();
-    if let Some(cap) = max_points {
-        points = points.min(to_f64(cap));
-    }
-    let bytes_f = (points.ceil() + 1.0) * sparse_bytes_per_point(N);
-    let bytes = if bytes_f.is_finite() && bytes_f < 1.8e19 {
-        #[expect(
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss,
-            reason = "finite, positive and below u64::MAX"
-        )]
-        let b = bytes_f as u64;
-        b
-    } else {
-        u64::MAX
-    };
     Ok(SparsePlan {
         cells,
         side,
         reach,
         eta,
-        bytes,
+        bytes: sparse::first_point_bytes::<N>(),
     })
 }
 
@@ -332,8 +337,10 @@ pub(crate) fn plan<const N: usize>(
         }
     }
     let dense = || plan_dense(domain, radius, max_points);
-    let sparse = || plan_sparse(domain, radius, max_points);
+    let sparse = || plan_sparse(domain, radius);
     let too_large = |needed: u64| Error::GridTooLarge { needed, budget };
+    // Only what is allocated before the first point is checked here: the
+    // points themselves are counted as they come (see `budget.rs`).
     match layout {
         GridLayout::Dense => match dense() {
             Ok(d) if d.bytes <= budget => Ok(GridPlan::Dense(d)),
@@ -346,18 +353,19 @@ pub(crate) fn plan<const N: usize>(
             Err(needed) => Err(too_large(needed)),
         },
         GridLayout::Auto => {
+            // Dense where it fits even full, sparse otherwise: the sparse
+            // grid's memory grows with the points only.
             let dense = if N <= 4 { dense() } else { Err(u64::MAX) };
             if let Ok(d) = dense
-                && d.bytes <= budget
+                && d.bytes_when_full <= budget
             {
                 return Ok(GridPlan::Dense(d));
             }
+            let dense_bytes = dense.map_or_else(|b| b, |d| d.bytes);
             match sparse() {
                 Ok(s) if s.bytes <= budget => Ok(GridPlan::Sparse(s)),
-                Ok(s) => Err(too_large(
-                    s.bytes.min(dense.map_or_else(|b| b, |d| d.bytes)),
-                )),
-                Err(needed) => Err(too_large(needed.min(dense.map_or_else(|b| b, |d| d.bytes)))),
+                Ok(s) => Err(too_large(s.bytes.min(dense_bytes))),
+                Err(needed) => Err(too_large(needed.min(dense_bytes))),
             }
         }
     }
@@ -387,15 +395,15 @@ impl<const N: usize> Grid<N> {
 
 /// A sparse grid on the dense plan's cells. The sparse search is exact for
 /// any cell geometry whose cells tile each period, so this is always valid;
-/// it is used only when the dense allocation itself failed, and is not
-/// budget-checked (its memory grows with the points made).
+/// it is used only when the dense allocation itself failed. Its memory is
+/// counted against the budget as it grows, like any sparse grid's.
 fn fallback_sparse<const N: usize>(d: &DensePlan<N>) -> SparsePlan<N> {
     SparsePlan {
         cells: d.cells.map(|m| i64::try_from(m).unwrap_or(i64::MAX)),
         side: d.side,
         reach: d.reach.map(|p| i64::try_from(p).unwrap_or(i64::MAX)),
         eta: d.eta,
-        bytes: 0,
+        bytes: sparse::first_point_bytes::<N>(),
     }
 }
 
@@ -456,17 +464,50 @@ mod tests {
     }
 
     #[test]
-    fn a_point_cap_makes_a_huge_box_feasible() {
+    fn a_huge_box_plans_a_sparse_grid_that_allocates_nothing_up_front() {
         let d = Domain::from_extent([1e6, 1e6]).unwrap();
-        let none = plan(&d, 1e-3, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
-        assert!(none.is_err(), "uncapped must not fit: {none:?}");
-        let capped = plan(
-            &d,
-            1e-3,
-            GridLayout::Auto,
-            DEFAULT_MAX_GRID_BYTES,
-            Some(1000),
+        let p = plan(&d, 1e-3, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
+        assert!(
+            matches!(p, Ok(GridPlan::Sparse(s)) if s.bytes < 1024),
+            "{p:?}"
         );
-        assert!(matches!(capped, Ok(GridPlan::Sparse(_))), "{capped:?}");
+        let dense = plan(&d, 1e-3, GridLayout::Dense, DEFAULT_MAX_GRID_BYTES, None);
+        assert!(
+            matches!(dense, Err(Error::GridTooLarge { .. })),
+            "{dense:?}"
+        );
+        let none = plan(&d, 1e-3, GridLayout::Auto, 16, None);
+        assert!(matches!(none, Err(Error::GridTooLarge { .. })), "{none:?}");
+    }
+
+    /// A radius far larger than the box: the reach stops at the box (or,
+    /// periodic, at one period), so the stencils and padding stay tiny.
+    #[test]
+    fn the_reach_is_bounded_by_the_box() {
+        fn check<const N: usize>(extent: [f64; N], periodic: bool, r: f64) {
+            let d = Domain::from_extent(extent)
+                .unwrap()
+                .with_periodic([periodic; N]);
+            let p = plan_dense(&d, r, None).unwrap();
+            for (&reach, &m) in p.reach.iter().zip(&p.cells) {
+                assert!(reach <= m, "{N}-D r = {r}: reach {reach} > {m} cells");
+                if !periodic {
+                    assert!(reach < m, "{N}-D r = {r}: bounded reach {reach}");
+                }
+            }
+            assert!(p.bytes < 1 << 20, "{N}-D r = {r}: {} bytes", p.bytes);
+            let s = plan_sparse(&d, r).unwrap();
+            for (&reach, &m) in s.reach.iter().zip(&s.cells) {
+                assert!(reach <= m, "sparse {N}-D r = {r}: reach {reach} > {m}");
+            }
+        }
+        for periodic in [false, true] {
+            check([1.0, 1.0], periodic, 49.0);
+            check([0.9, 1.0, 1.0], periodic, 200.0);
+            check([1.0; 4], periodic, 50.0);
+            check([1.0; 8], periodic, 1e100);
+            // A long thin box: many cells on one axis only.
+            check([100.0, 0.01, 0.01], periodic, 5.0);
+        }
     }
 }

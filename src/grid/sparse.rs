@@ -8,6 +8,7 @@
 //! grows with the number of points, never with the volume of the box.
 
 use super::{NeighbourGrid, SparsePlan};
+use crate::budget::bytes_of;
 use crate::domain::Domain;
 use crate::vector::{periodic_distance_squared, zip_map};
 use core::hash::{BuildHasherDefault, Hasher};
@@ -15,6 +16,37 @@ use smallvec::SmallVec;
 use std::collections::HashMap;
 
 type Cell<const N: usize> = SmallVec<[[f64; N]; 2]>;
+
+/// Heap bytes of a hash table (hashbrown's layout, which std's map uses)
+/// that holds `capacity` entries of `entry` bytes: a power-of-two count of
+/// buckets, 7/8 of them usable from 8 buckets up (3 of 4, 7 of 8 below);
+/// one entry and one control byte a bucket, plus a group of control bytes
+/// and alignment.
+fn table_bytes(capacity: usize, entry: u64) -> u64 {
+    if capacity == 0 {
+        return 0;
+    }
+    let buckets = if capacity < 8 {
+        capacity.saturating_add(1).next_power_of_two()
+    } else {
+        capacity.saturating_mul(8).div_ceil(7).next_power_of_two()
+    };
+    u64::try_from(buckets)
+        .unwrap_or(u64::MAX)
+        .saturating_mul(entry.saturating_add(1))
+        .saturating_add(64)
+}
+
+/// Bytes of one entry of the map: a key and a cell.
+fn entry_bytes<const N: usize>() -> u64 {
+    bytes_of::<([i64; N], Cell<N>)>(1)
+}
+
+/// What storing the first point takes: the smallest table (4 buckets) and
+/// one active entry.
+pub(crate) fn first_point_bytes<const N: usize>() -> u64 {
+    table_bytes(3, entry_bytes::<N>()).saturating_add(bytes_of::<[f64; N]>(1))
+}
 
 #[derive(Debug)]
 pub(crate) struct Sparse<const N: usize> {
@@ -28,6 +60,8 @@ pub(crate) struct Sparse<const N: usize> {
     periodic: [bool; N],
     periods: [f64; N],
     radius_squared: f64,
+    /// Heap bytes of the cells that spilled out of their inline room.
+    spilled: u64,
 }
 
 impl<const N: usize> Sparse<N> {
@@ -43,6 +77,7 @@ impl<const N: usize> Sparse<N> {
             periodic: domain.periodic(),
             periods: domain.periods(),
             radius_squared: radius * radius,
+            spilled: 0,
         }
     }
 
@@ -136,10 +171,60 @@ impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
         self.visit(0, &cell, &offset, &mut key, 0.0, p)
     }
 
+    fn bytes(&self) -> u64 {
+        table_bytes(self.map.capacity(), entry_bytes::<N>()).saturating_add(self.spilled)
+    }
+
+    fn reserve(&mut self, p: &[f64; N], spare: u64) -> bool {
+        let cell = self.cell_of(p);
+        if let Some(points) = self.map.get_mut(&cell) {
+            if points.len() < points.capacity() {
+                return true;
+            }
+            // A full cell moves to a heap block twice its size.
+            let wanted = points.capacity().saturating_mul(2);
+            if bytes_of::<[f64; N]>(wanted) > spare {
+                return false;
+            }
+            let before = heap_bytes(points);
+            if points.try_reserve_exact(wanted - points.len()).is_err() {
+                return false;
+            }
+            self.spilled = self.spilled.saturating_add(heap_bytes(points) - before);
+            return true;
+        }
+        let (len, capacity) = (self.map.len(), self.map.capacity());
+        if len < capacity {
+            return true;
+        }
+        // A full table moves to one with twice the buckets; both are held
+        // while the entries move.
+        let entry = entry_bytes::<N>();
+        let wanted = capacity.saturating_mul(2).max(3);
+        if table_bytes(wanted, entry) > spare {
+            return false;
+        }
+        self.map.try_reserve(wanted - len).is_ok()
+    }
+
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
-        self.map.entry(cell).or_default().push(p);
+        let points = self.map.entry(cell).or_default();
+        let before = heap_bytes(points);
+        points.push(p);
+        self.spilled = self
+            .spilled
+            .saturating_add(heap_bytes(points).saturating_sub(before));
         true
+    }
+}
+
+/// Heap bytes of a cell: none while its points fit inline.
+fn heap_bytes<const N: usize>(points: &Cell<N>) -> u64 {
+    if points.spilled() {
+        bytes_of::<[f64; N]>(points.capacity())
+    } else {
+        0
     }
 }
 

@@ -31,7 +31,7 @@ mod exact;
 mod window;
 
 use crate::annulus::{CandidateSampler, Candidates};
-use crate::bridson::{MAX_RADIUS, MIN_RADIUS};
+use crate::bridson::check_radius_and_attempts;
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::vector::add;
@@ -187,7 +187,9 @@ impl TiledBuilder {
     /// samples per pixel — is NaN, infinite, `<= 0` or outside
     /// `1e-150 ..= 1e150`, if no spacing was given, or if exact mode asks
     /// for 0 points per pixel; [`Error::ZeroAttempts`]
-    /// if `k == 0`; [`Error::GridTooLarge`] if the window exceeds its budget.
+    /// if `k == 0`; [`Error::TooManyAttempts`] if `k` is above
+    /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS); [`Error::GridTooLarge`] if the
+    /// window exceeds its budget.
     /// The window's row and cell counts are bounded too, so a radius above
     /// about `1.25e8` pixels, or below about `2.2e-5` (more than 65 536 cells
     /// per pixel), gives [`Error::GridTooLarge`] with `needed: u64::MAX`
@@ -210,12 +212,7 @@ impl TiledBuilder {
             (None, Spacing::PerPixel(n)) if n > 0.0 => (density / n).sqrt(),
             (None, Spacing::PerPixel(_)) => f64::NAN,
         };
-        if !(MIN_RADIUS..=MAX_RADIUS).contains(&radius) {
-            return Err(Error::InvalidRadius);
-        }
-        if self.attempts == 0 {
-            return Err(Error::ZeroAttempts);
-        }
+        check_radius_and_attempts(radius, self.attempts)?;
         let too_large = |needed| Error::GridTooLarge {
             needed,
             budget: self.max_window_bytes,

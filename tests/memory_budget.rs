@@ -1,0 +1,179 @@
+//! The memory budget, checked against the allocator itself: a counting
+//! global allocator records the peak of the heap while a run is built and
+//! driven to its end, and that peak never exceeds `max_grid_bytes`, in any
+//! dimension, layout or budget; a radius far larger than the box takes a few
+//! kilobytes, not gigabytes.
+//!
+//! The counters are per thread: tests run on parallel threads, and the
+//! test harness allocates on its own.
+
+use bridson::{Domain, Error, GridLayout, PoissonDisk};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+/// The system allocator, counting the bytes held now and their peak.
+struct Counting;
+
+thread_local! {
+    /// Bytes this thread holds now (wrapping: a block freed by another
+    /// thread than its own would be counted there; no test does that).
+    static NOW: Cell<usize> = const { Cell::new(0) };
+    /// The most `NOW` has been since the last reset.
+    static PEAK: Cell<usize> = const { Cell::new(0) };
+}
+
+fn add(bytes: usize) {
+    let now = NOW.get().wrapping_add(bytes);
+    NOW.set(now);
+    PEAK.set(PEAK.get().max(now));
+}
+
+fn sub(bytes: usize) {
+    NOW.set(NOW.get().wrapping_sub(bytes));
+}
+
+// SAFETY: every call forwards to `System` with the caller's arguments
+// unchanged; the counters only observe sizes.
+#[expect(
+    unsafe_code,
+    reason = "a global allocator is an unsafe trait; test only"
+)]
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        add(layout.size());
+        // SAFETY: forwarded unchanged.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        add(layout.size());
+        // SAFETY: forwarded unchanged.
+        unsafe { System.alloc_zeroed(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        sub(layout.size());
+        // SAFETY: forwarded unchanged.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        // Counted as the worst case: the new block while the old is held.
+        add(new_size);
+        sub(layout.size());
+        // SAFETY: forwarded unchanged.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Builds the sampler, runs it to its end (at most `limit` points) and
+/// returns the points made, why the run stopped early, and the peak heap
+/// the run took above what was held before it.
+fn run<const N: usize>(
+    domain: Domain<N>,
+    r: f64,
+    layout: GridLayout,
+    budget: u64,
+    limit: usize,
+) -> Result<(usize, Option<Error>, u64), Error> {
+    let before = NOW.get();
+    PEAK.set(before);
+    let sampler = PoissonDisk::builder(domain, r)
+        .layout(layout)
+        .max_grid_bytes(budget)
+        .build()?;
+    let mut it = sampler.iter_seeded(11);
+    let n = it.by_ref().take(limit).count();
+    let error = it.error();
+    drop(it);
+    let peak = PEAK.get().wrapping_sub(before);
+    Ok((n, error, peak as u64))
+}
+
+fn unit<const N: usize>(periodic: bool) -> Domain<N> {
+    Domain::from_extent([1.0; N])
+        .expect("box")
+        .with_periodic([periodic; N])
+}
+
+/// Every run's peak heap stays within its budget, whether it completes or
+/// stops at the budget; small budgets do stop runs, so the check bites.
+#[test]
+fn the_peak_heap_stays_within_the_budget() {
+    fn check<const N: usize>(r: f64, budgets: &[u64], stops: &mut usize, complete: &mut usize) {
+        for &budget in budgets {
+            for layout in [GridLayout::Auto, GridLayout::Dense, GridLayout::Sparse] {
+                for periodic in [false, true] {
+                    let Ok((n, error, peak)) =
+                        run(unit::<N>(periodic), r, layout, budget, usize::MAX)
+                    else {
+                        continue;
+                    };
+                    let ctx = format!("{N}-D r = {r}, {layout:?}, periodic {periodic}");
+                    assert!(
+                        peak <= budget,
+                        "{ctx}: peak heap {peak} bytes over the budget of {budget} ({n} points)"
+                    );
+                    match error {
+                        None => *complete += 1,
+                        Some(Error::MemoryBudgetExceeded { points, .. }) => {
+                            assert_eq!(points, n as u64, "{ctx}: count");
+                            *stops += 1;
+                        }
+                        Some(other) => panic!("{ctx}: {other:?}"),
+                    }
+                }
+            }
+        }
+    }
+    let (mut stops, mut complete) = (0, 0);
+    // From a budget that stops every run to one that lets most complete.
+    let budgets = [1 << 12, 1 << 16, 1 << 20];
+    check::<1>(1e-4, &budgets, &mut stops, &mut complete);
+    check::<2>(0.01, &budgets, &mut stops, &mut complete);
+    check::<3>(0.06, &budgets, &mut stops, &mut complete);
+    check::<4>(0.15, &budgets, &mut stops, &mut complete);
+    check::<5>(0.3, &budgets, &mut stops, &mut complete);
+    check::<8>(0.6, &budgets[1..], &mut stops, &mut complete);
+    assert!(stops >= 20, "only {stops} runs reached their budget");
+    assert!(complete >= 10, "only {complete} runs completed");
+}
+
+/// A radius given in the wrong units, far larger than the box, makes one
+/// point and ends, in a few kilobytes, in every dimension, bounded or
+/// periodic, with the default 1 GiB budget (before the reach was bounded
+/// by the box, 3-D r = 200 took 7.9 GiB).
+#[test]
+fn a_huge_radius_takes_kilobytes() {
+    fn check<const N: usize>(lo: f64, r: f64) {
+        for periodic in [false, true] {
+            let domain = Domain::new([lo; N], [1.0; N])
+                .expect("box")
+                .with_periodic([periodic; N]);
+            let (n, error, peak) = run(
+                domain,
+                r,
+                GridLayout::Auto,
+                bridson::DEFAULT_MAX_GRID_BYTES,
+                usize::MAX,
+            )
+            .expect("valid");
+            let ctx = format!("{N}-D r = {r}, periodic {periodic}");
+            assert_eq!((n, error), (1, None), "{ctx}: one point");
+            assert!(peak < 1 << 16, "{ctx}: {peak} bytes");
+        }
+    }
+    for r in [2.0, 49.0, 200.0, 1e6, 1e150] {
+        check::<1>(0.1, r);
+        check::<2>(0.1, r);
+        check::<3>(0.1, r);
+        check::<4>(0.1, r);
+        check::<5>(0.1, r);
+        check::<6>(0.1, r);
+        check::<7>(0.1, r);
+        check::<8>(0.1, r);
+    }
+}
