@@ -130,6 +130,19 @@ fn far_case<const N: usize>(max_volume: f64, max_axis: f64) -> impl Strategy<Val
     )
 }
 
+/// Like [`case`], with the box shrunk by up to 1000 against `r` on every
+/// axis: radii as large as the box or far larger, as a radius given in the
+/// wrong units would be. A handful of points, or one.
+fn small_box_case<const N: usize>() -> impl Strategy<Value = Case<N>> {
+    (case::<N>(50.0, 4.0), 0.0f64..3.0).prop_map(|(mut c, log_shrink)| {
+        let shrink = 10f64.powf(-log_shrink);
+        for i in 0..N {
+            c.hi[i] = c.lo[i] + (c.hi[i] - c.lo[i]) * shrink;
+        }
+        c
+    })
+}
+
 fn sampler<const N: usize>(c: &Case<N>, layout: GridLayout) -> Result<PoissonDisk<N>, String> {
     let domain = Domain::new(c.lo, c.hi)
         .map_err(|e| format!("domain rejected: {e}"))?
@@ -319,6 +332,50 @@ proptest! {
 
     #[test]
     fn properties_8d(c in case::<8>(120.0, 3.0)) {
+        check_case(&c)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(16))]
+
+    #[test]
+    fn radius_large_against_the_box_1d(c in small_box_case::<1>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_2d(c in small_box_case::<2>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_3d(c in small_box_case::<3>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_4d(c in small_box_case::<4>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_5d(c in small_box_case::<5>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_6d(c in small_box_case::<6>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_7d(c in small_box_case::<7>()) {
+        check_case(&c)?;
+    }
+
+    #[test]
+    fn radius_large_against_the_box_8d(c in small_box_case::<8>()) {
         check_case(&c)?;
     }
 }
