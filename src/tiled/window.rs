@@ -4,8 +4,9 @@
 //!
 //! Memory is proportional to the image width times the window height
 //! (`ceil(r)` rows above the current row for the minimum-distance checks,
-//! the current row, and `ceil(4r)` rows below for points made ahead of
-//! their pixel), never to the image height.
+//! the current row, and `ceil(8r) + 1` rows below for points made ahead of
+//! their pixel, each count capped at the image height; see
+//! `WindowPlan::new`), never to the image height.
 
 use crate::grid::rounding_margin;
 use crate::vector::distance_squared;
