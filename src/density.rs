@@ -1,6 +1,6 @@
 //! How densely a point set is packed: the relative radius ρ.
 
-use crate::grid::unit_ball_volume;
+use crate::vector::unit_ball_volume;
 
 /// The densest packing fraction of equal balls known in `n` dimensions
 /// (proven optimal for `n <= 3` and `n = 8`; the best lattice for `4..=7`).

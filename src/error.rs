@@ -64,6 +64,27 @@ pub enum Error {
         /// The budget in force.
         budget: u64,
     },
+    /// Occurs when a streaming raster ([`Tiled`](crate::Tiled)) has no
+    /// pixel: its width (axis 0) or height (axis 1) is 0.
+    EmptyRaster {
+        /// The first empty axis: 0 for the width, 1 for the height.
+        axis: usize,
+    },
+    /// Occurs when the points per pixel asked of a streaming raster are not
+    /// a positive finite number ([`TiledBuilder::per_pixel`](crate::TiledBuilder::per_pixel)),
+    /// or exact mode asks for 0 ([`TiledBuilder::exact`](crate::TiledBuilder::exact)).
+    InvalidPerPixel,
+    /// Occurs when a streaming raster's rolling window would need more
+    /// memory than its budget ([`TiledBuilder::max_window_bytes`](crate::TiledBuilder::max_window_bytes)).
+    WindowTooLarge {
+        /// The bytes the window needs, saturated at `u64::MAX`; `u64::MAX`
+        /// also stands for a window no budget makes possible (more than
+        /// 65 536 cells per pixel, or a radius of more than about `1.25e8`
+        /// pixels).
+        needed: u64,
+        /// The budget in force.
+        budget: u64,
+    },
     /// Occurs when a run stops because storing its next point would take
     /// the memory in use (the grid, its points and the active list) past
     /// the budget. Reported by [`Iter::error`](crate::Iter::error) and by
@@ -110,6 +131,22 @@ impl fmt::Display for Error {
             Self::GridTooLarge { needed, budget } => write!(
                 f,
                 "the background grid needs {needed} bytes, over the budget of {budget} bytes"
+            ),
+            Self::EmptyRaster { axis: 0 } => f.write_str("the raster has width 0"),
+            Self::EmptyRaster { .. } => f.write_str("the raster has height 0"),
+            Self::InvalidPerPixel => f.write_str(
+                "the points per pixel must be a positive finite number (exact mode: at least 1)",
+            ),
+            Self::WindowTooLarge {
+                needed: u64::MAX,
+                budget,
+            } => write!(
+                f,
+                "no streaming window can hold this raster at this radius (budget {budget} bytes)"
+            ),
+            Self::WindowTooLarge { needed, budget } => write!(
+                f,
+                "the streaming window needs {needed} bytes, over the budget of {budget} bytes"
             ),
             Self::MemoryBudgetExceeded { points, budget } => write!(
                 f,

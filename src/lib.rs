@@ -131,31 +131,37 @@
     )
 )]
 
-mod annulus;
-mod blockers;
-mod bridson;
+// Layers, top to bottom; each imports only from its own layer or below
+// (ARCHITECTURE.md has the map).
+// Streaming.
+mod tiled;
+// Core: the sampler, where its candidates fall, its per-pick cache.
+mod candidates;
+mod conflict_cache;
+mod sampler;
+// The background grid.
+mod grid;
+// Helpers.
 mod budget;
 mod density;
 mod domain;
 mod error;
-mod grid;
 mod huge_pages;
 mod prefetch;
 mod random;
 #[cfg(feature = "serde")]
 mod serde_array;
-mod tiled;
 mod vector;
 
-pub use crate::annulus::Candidates;
-pub use crate::bridson::{
-    Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
-};
+pub use crate::candidates::Candidates;
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
+pub use crate::sampler::{
+    Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
+};
 pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
 pub use rand;
 

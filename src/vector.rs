@@ -74,9 +74,41 @@ pub(crate) fn scale<const N: usize>(a: &[f64; N], s: f64) -> [f64; N] {
     a.map(|x| x * s)
 }
 
+/// Volume of the unit ball in `n` dimensions.
+pub(crate) fn unit_ball_volume(n: usize) -> f64 {
+    let (mut v, start) = if n.is_multiple_of(2) {
+        (1.0, 2)
+    } else {
+        (2.0, 3)
+    };
+    let mut k = start;
+    while k <= n {
+        #[expect(clippy::cast_precision_loss, reason = "N is small")]
+        let kf = k as f64;
+        v *= core::f64::consts::TAU / kf;
+        k += 2;
+    }
+    v
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn unit_ball_volumes() {
+        let expected = [
+            1.0,
+            2.0,
+            core::f64::consts::PI,
+            4.0 / 3.0 * core::f64::consts::PI,
+        ];
+        for (n, v) in expected.iter().enumerate() {
+            assert!((unit_ball_volume(n) - v).abs() < 1e-12, "V_{n}");
+        }
+        let v8 = core::f64::consts::PI.powi(4) / 24.0;
+        assert!((unit_ball_volume(8) - v8).abs() < 1e-12, "V_8");
+    }
 
     #[test]
     fn periodic_distance_takes_the_nearest_image() {

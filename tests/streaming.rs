@@ -169,12 +169,12 @@ fn bad_settings_are_errors() {
     let e = |b: bridson::TiledBuilder| b.build().err();
     assert_eq!(
         e(Tiled::builder(0, 4).radius(0.5)),
-        Some(Error::EmptyBox { axis: 0 }),
+        Some(Error::EmptyRaster { axis: 0 }),
         "width 0"
     );
     assert_eq!(
         e(Tiled::builder(4, 0).radius(0.5)),
-        Some(Error::EmptyBox { axis: 1 }),
+        Some(Error::EmptyRaster { axis: 1 }),
         "height 0"
     );
     assert_eq!(
@@ -192,7 +192,7 @@ fn bad_settings_are_errors() {
     for n in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
         assert_eq!(
             e(Tiled::builder(4, 4).per_pixel(n)),
-            Some(Error::InvalidRadius),
+            Some(Error::InvalidPerPixel),
             "per pixel {n}"
         );
     }
@@ -201,17 +201,24 @@ fn bad_settings_are_errors() {
         Some(Error::ZeroAttempts),
         "k = 0"
     );
+    assert_eq!(
+        e(Tiled::builder(4, 4).radius(0.5).attempts(u32::MAX)),
+        Some(Error::TooManyAttempts {
+            max: bridson::MAX_ATTEMPTS
+        }),
+        "k too large"
+    );
     assert!(
         matches!(
             e(Tiled::builder(4, 4).radius(0.5).max_window_bytes(100)),
-            Some(Error::GridTooLarge { .. })
+            Some(Error::WindowTooLarge { .. })
         ),
         "window over budget"
     );
     assert!(
         matches!(
             e(Tiled::builder(u32::MAX, 4).radius(1e-6)),
-            Some(Error::GridTooLarge { .. })
+            Some(Error::WindowTooLarge { .. })
         ),
         "huge window"
     );
@@ -220,7 +227,7 @@ fn bad_settings_are_errors() {
     for r in [1.3e8, 2.0e-5] {
         assert_eq!(
             e(Tiled::builder(1, 1).radius(r).max_window_bytes(u64::MAX)),
-            Some(Error::GridTooLarge {
+            Some(Error::WindowTooLarge {
                 needed: u64::MAX,
                 budget: u64::MAX
             }),
@@ -231,7 +238,7 @@ fn bad_settings_are_errors() {
     assert!(
         matches!(
             e(Tiled::builder(1, 1).radius(2.5e-5)),
-            Some(Error::GridTooLarge { needed, .. }) if needed < u64::MAX
+            Some(Error::WindowTooLarge { needed, .. }) if needed < u64::MAX
         ),
         "r = 2.5e-5: over the default budget, but a larger one would do"
     );
@@ -277,7 +284,7 @@ proptest! {
 fn exact_zero_is_an_error() {
     assert_eq!(
         Tiled::builder(4, 4).exact(0).build().err(),
-        Some(Error::InvalidRadius),
+        Some(Error::InvalidPerPixel),
         "exact(0)"
     );
 }

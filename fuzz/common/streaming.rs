@@ -30,7 +30,9 @@
 
 use crate::bytes::Bytes;
 use crate::common;
-use bridson::{Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_WINDOW_BYTES, Error, Scheme, Tiled};
+use bridson::{
+    Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_WINDOW_BYTES, Error, MAX_ATTEMPTS, Scheme, Tiled,
+};
 use core::f64::consts::SQRT_2;
 
 /// Most pixels pulled per execution.
@@ -296,10 +298,18 @@ impl Inputs {
     /// independently, in the order the docs list them.
     fn expected_error(&self) -> Option<Error> {
         if self.width == 0 {
-            return Some(Error::EmptyBox { axis: 0 });
+            return Some(Error::EmptyRaster { axis: 0 });
         }
         if self.height == 0 {
-            return Some(Error::EmptyBox { axis: 1 });
+            return Some(Error::EmptyRaster { axis: 1 });
+        }
+        let per_pixel_ok = match (self.exact, self.spacing) {
+            (Some(n), _) => n > 0,
+            (None, Spacing::PerPixel(n)) => n > 0.0 && n.is_finite(),
+            _ => true,
+        };
+        if !per_pixel_ok {
+            return Some(Error::InvalidPerPixel);
         }
         if self
             .documented_radius()
@@ -309,6 +319,9 @@ impl Inputs {
         }
         if self.k() == 0 {
             return Some(Error::ZeroAttempts);
+        }
+        if self.k() > MAX_ATTEMPTS {
+            return Some(Error::TooManyAttempts { max: MAX_ATTEMPTS });
         }
         None
     }
@@ -361,7 +374,7 @@ pub(crate) fn run(data: &[u8]) {
     if let Some(less) = bytes.checked_sub(1) {
         assert_eq!(
             at(less).err(),
-            Some(Error::GridTooLarge {
+            Some(Error::WindowTooLarge {
                 needed: bytes,
                 budget: less
             }),
@@ -387,14 +400,14 @@ pub(crate) fn run(data: &[u8]) {
 }
 
 /// `build()` failed: the error must be the one the inputs call for, or
-/// `GridTooLarge` with the inputs' budget and a `needed` above it.
+/// `WindowTooLarge` with the inputs' budget and a `needed` above it.
 fn check_build_error(ctx: &str, e: Error, expected: Option<Error>, budget: u64) {
     if let Some(expected) = expected {
         assert_eq!(e, expected, "{ctx}: the wrong error");
         return;
     }
     match e {
-        Error::GridTooLarge { needed, budget: b } => {
+        Error::WindowTooLarge { needed, budget: b } => {
             assert_eq!(b, budget, "{ctx}: the wrong budget reported");
             // u64::MAX: no window can exist at any budget.
             assert!(

@@ -17,7 +17,6 @@
 //! serves toroidal domains.
 
 use super::{DensePlan, NeighbourGrid};
-use crate::blockers::Blockers;
 use crate::budget::{reserve_one, vec_bytes};
 use crate::domain::Domain;
 use crate::vector::{distance_squared, periodic_distance_squared};
@@ -347,16 +346,16 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     /// collecting the indices of occupied cells without a branch; then
     /// those points. Up to 3-D only: the 4-D stencil has 841 cells.
     #[inline(always)]
-    fn seed<const B: usize>(&self, p: &[f64; N], cache: &mut Blockers<N, B>) {
+    fn seed(&self, p: &[f64; N], limit: usize, mut take: impl FnMut(&[f64; N])) {
         if N > 3 {
             return;
         }
         let base = self.base(&self.cell_of(p));
         let mut found = [EMPTY; SEED_MAX];
         let n = self.occupied(base, &self.seed_offsets, &mut found);
-        for &index in found.iter().take(n.min(B)) {
+        for &index in found.iter().take(n.min(limit)) {
             if let Some(q) = self.points.get(index as usize) {
-                cache.push(q);
+                take(q);
             }
         }
     }
@@ -673,15 +672,13 @@ mod tests {
         for p in [[0.5, 0.5], [0.6, 0.5], [0.5, 0.62], [0.9, 0.9]] {
             assert!(g.insert(p), "insert {p:?}");
         }
-        let mut cache = Blockers::<2, 8>::new([0.5, 0.5], 0.1);
-        g.seed(&[0.5, 0.5], &mut cache);
-        assert!(!cache.block(&[0.45, 0.5], 0.01), "not the point itself");
-        assert!(cache.block(&[0.65, 0.5], 0.01), "near the first neighbour");
-        assert!(cache.block(&[0.5, 0.67], 0.01), "near the second");
-        assert!(
-            !cache.block(&[0.9, 0.85], 0.01),
-            "the far point is not cached"
-        );
+        let mut seeded = Vec::new();
+        g.seed(&[0.5, 0.5], 8, |q| seeded.push(*q));
+        seeded.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(seeded, [[0.5, 0.62], [0.6, 0.5]], "the two neighbours only");
+        let mut one = Vec::new();
+        g.seed(&[0.5, 0.5], 1, |q| one.push(*q));
+        assert_eq!(one.len(), 1, "up to the limit");
     }
 
     #[test]

@@ -20,9 +20,9 @@
 pub(crate) mod dense;
 pub(crate) mod sparse;
 
-use crate::blockers::Blockers;
 use crate::domain::Domain;
 use crate::error::Error;
+use crate::vector::unit_ball_volume;
 
 /// Which background grid layout the sampler uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -91,12 +91,13 @@ pub(crate) struct SparsePlan<const N: usize> {
 pub(crate) trait NeighbourGrid<const N: usize> {
     /// A stored point closer than `r` to `p` (which lies in the domain), if
     /// any: the first one found, which the sampler remembers (see
-    /// `blockers.rs`). Exact: compares squared distances summed in axis
+    /// `conflict_cache.rs`). Exact: compares squared distances summed in axis
     /// order.
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]>;
-    /// Puts stored points near `p` into `cache` (up to its capacity `B`),
-    /// where the grid finds them cheaply; by default none.
-    fn seed<const B: usize>(&self, _p: &[f64; N], _cache: &mut Blockers<N, B>) {}
+    /// Hands up to `limit` stored points near `p` to `take`, nearest cells
+    /// first, where the grid finds them cheaply; by default none. (The
+    /// sampler seeds its per-pick cache with them.)
+    fn seed(&self, _p: &[f64; N], _limit: usize, _take: impl FnMut(&[f64; N])) {}
     /// Starts loading the cells [`seed`](Self::seed) will read around `p`;
     /// a hint only, by default nothing.
     fn prefetch(&self, _p: &[f64; N]) {}
@@ -252,23 +253,6 @@ fn bounded_reach(needed: u64, m: u64, periodic: bool) -> u64 {
     }
 }
 
-/// Volume of the unit ball in `n` dimensions.
-pub(crate) fn unit_ball_volume(n: usize) -> f64 {
-    let (mut v, start) = if n.is_multiple_of(2) {
-        (1.0, 2)
-    } else {
-        (2.0, 3)
-    };
-    let mut k = start;
-    while k <= n {
-        #[expect(clippy::cast_precision_loss, reason = "N is small")]
-        let kf = k as f64;
-        v *= core::f64::consts::TAU / kf;
-        k += 2;
-    }
-    v
-}
-
 /// Upper bound on the number of points of any set with minimum distance
 /// `r` in the domain: balls of radius `r/2` around them are disjoint and lie
 /// in the box grown by `r/2` on bounded axes. Returned as a natural log, so
@@ -410,21 +394,6 @@ fn fallback_sparse<const N: usize>(d: &DensePlan<N>) -> SparsePlan<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn unit_ball_volumes() {
-        let expected = [
-            1.0,
-            2.0,
-            core::f64::consts::PI,
-            4.0 / 3.0 * core::f64::consts::PI,
-        ];
-        for (n, v) in expected.iter().enumerate() {
-            assert!((unit_ball_volume(n) - v).abs() < 1e-12, "V_{n}");
-        }
-        let v8 = core::f64::consts::PI.powi(4) / 24.0;
-        assert!((unit_ball_volume(8) - v8).abs() < 1e-12, "V_8");
-    }
 
     #[test]
     fn dense_reach_follows_the_dimension() {

@@ -30,10 +30,10 @@
 mod exact;
 mod window;
 
-use crate::annulus::{CandidateSampler, Candidates};
-use crate::bridson::check_radius_and_attempts;
+use crate::candidates::{CandidateSampler, Candidates};
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
+use crate::sampler::check_radius_and_attempts;
 use crate::vector::add;
 use core::cmp::Ordering;
 use core::iter::FusedIterator;
@@ -182,38 +182,39 @@ impl TiledBuilder {
     /// Checks every setting and sizes the window.
     ///
     /// # Errors
-    /// [`Error::EmptyBox`] if the width (axis 0) or height (axis 1) is 0;
+    /// [`Error::EmptyRaster`] if the width (axis 0) or height (axis 1) is
+    /// 0; [`Error::InvalidPerPixel`] if the samples per pixel are not a
+    /// positive finite number, or exact mode asks for 0 points per pixel;
     /// [`Error::InvalidRadius`] if the radius — given, or derived from the
     /// samples per pixel — is NaN, infinite, `<= 0` or outside
-    /// `1e-150 ..= 1e150`, if no spacing was given, or if exact mode asks
-    /// for 0 points per pixel; [`Error::ZeroAttempts`]
+    /// `1e-150 ..= 1e150`, or if no spacing was given; [`Error::ZeroAttempts`]
     /// if `k == 0`; [`Error::TooManyAttempts`] if `k` is above
-    /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS); [`Error::GridTooLarge`] if the
-    /// window exceeds its budget.
+    /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS); [`Error::WindowTooLarge`] if
+    /// the window exceeds its budget.
     /// The window's row and cell counts are bounded too, so a radius above
     /// about `1.25e8` pixels, or below about `2.2e-5` (more than 65 536 cells
-    /// per pixel), gives [`Error::GridTooLarge`] with `needed: u64::MAX`
+    /// per pixel), gives [`Error::WindowTooLarge`] with `needed: u64::MAX`
     /// whatever the budget, even on a 1 × 1 raster.
     pub fn build(self) -> Result<Tiled, Error> {
         if self.width == 0 {
-            return Err(Error::EmptyBox { axis: 0 });
+            return Err(Error::EmptyRaster { axis: 0 });
         }
         if self.height == 0 {
-            return Err(Error::EmptyBox { axis: 1 });
+            return Err(Error::EmptyRaster { axis: 1 });
         }
         let density = match self.candidates {
             Candidates::Sphere => DENSITY_SPHERE,
             _ => DENSITY_ANNULUS,
         };
         let radius = match (self.exact, self.spacing) {
-            (Some(0), _) => f64::NAN,
+            (Some(0), _) => return Err(Error::InvalidPerPixel),
             (Some(n), _) => (density / (OVERSAMPLE * f64::from(n))).sqrt(),
             (None, Spacing::Radius(r)) => r,
-            (None, Spacing::PerPixel(n)) if n > 0.0 => (density / n).sqrt(),
-            (None, Spacing::PerPixel(_)) => f64::NAN,
+            (None, Spacing::PerPixel(n)) if n > 0.0 && n.is_finite() => (density / n).sqrt(),
+            (None, Spacing::PerPixel(_)) => return Err(Error::InvalidPerPixel),
         };
         check_radius_and_attempts(radius, self.attempts)?;
-        let too_large = |needed| Error::GridTooLarge {
+        let too_large = |needed| Error::WindowTooLarge {
             needed,
             budget: self.max_window_bytes,
         };

@@ -295,6 +295,13 @@ impl Window {
 
 /// Offsets `(dx, dy)` of the cells that can hold a point closer than `r` to
 /// a point of the centre cell (with a rounding margin), nearest first.
+///
+/// The same test as the dense grid's whole-cell stencil
+/// (`grid/dense.rs`, `Stencil::new` with one part), kept apart on purpose:
+/// the window's rows wrap in a ring buffer, so an offset is a `(dx, dy)`
+/// pair resolved row by row, not one linear offset into a padded array; and
+/// its cells hold lists of points, not one index, so the dense grid's
+/// parts-of-a-cell stencils would buy little here.
 fn stencil(reach: usize, side: f64, radius: f64, eta: f64) -> Vec<(isize, isize)> {
     let reach = isize::try_from(reach).unwrap_or(0);
     let gap = |d: isize| {

@@ -21,13 +21,13 @@ const FAR: f64 = f64::INFINITY;
 
 /// What the quick test accepts as surely closer than `r`: a squared distance
 /// below `1 - 2⁻¹²` in units of `r²`. Its rounding error is far smaller
-/// (see [`Blockers::block`]); a pair in between is left to the exact grid
+/// (see [`ConflictCache::block`]); a pair in between is left to the exact grid
 /// search.
 const SURELY_INSIDE: f32 = 1.0 - 1.0 / 4096.0;
 
 /// Up to this many radii from the origin (`2²⁸`), a candidate is its offset
 /// from the active point to within `2⁻²⁵·r` per axis, well inside what
-/// [`Blockers::block_relative`] allows.
+/// [`ConflictCache::block_relative`] allows.
 pub(crate) const NEAR_ORIGIN: f64 = 268_435_456.0;
 
 /// The last `B` points found closer than `r` to a candidate around the
@@ -39,7 +39,7 @@ pub(crate) const NEAR_ORIGIN: f64 = 268_435_456.0;
 /// test of bounded domains, which then runs four slots to a vector
 /// instead of two.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Blockers<const N: usize, const B: usize> {
+pub(crate) struct ConflictCache<const N: usize, const B: usize> {
     coords: [[f64; B]; N],
     near: [[f32; B]; N],
     origin: [f64; N],
@@ -47,7 +47,7 @@ pub(crate) struct Blockers<const N: usize, const B: usize> {
     next: usize,
 }
 
-impl<const N: usize, const B: usize> Blockers<N, B> {
+impl<const N: usize, const B: usize> ConflictCache<N, B> {
     /// An empty cache for the candidates around `origin` (the active
     /// point), for radius `r`.
     pub(crate) fn new(origin: [f64; N], radius: f64) -> Self {
@@ -183,7 +183,7 @@ mod tests {
         let (r, periods) = (0.3, [2.0, 0.0]);
         let r2 = r * r;
         let mut rng = seeded_rng(12);
-        let mut cache = Blockers::<2, 4>::new([0.0, 0.0], r);
+        let mut cache = ConflictCache::<2, 4>::new([0.0, 0.0], r);
         let mut remembered: Vec<[f64; 2]> = Vec::new();
         let (mut blocked, mut clear) = (0, 0);
         for round in 0..2000 {
@@ -232,7 +232,7 @@ mod tests {
                 // distance r·(1 + t) from it, t in ±2⁻²⁰.
                 let dir = direction::<N>(&mut rng);
                 let q: [f64; N] = core::array::from_fn(|i| origin[i] + dir[i] * r);
-                let mut cache = Blockers::<N, 8>::new(origin, r);
+                let mut cache = ConflictCache::<N, 8>::new(origin, r);
                 cache.push(&q);
                 let dir2 = direction::<N>(&mut rng);
                 let t = (unit(&mut rng) - 0.5) * 2f64.powi(-19);
@@ -256,7 +256,7 @@ mod tests {
         check([123.25], 0.5, 6);
     }
 
-    /// [`Blockers::block_relative`] with the candidate given as its offset
+    /// [`ConflictCache::block_relative`] with the candidate given as its offset
     /// from the active point in units of r (what the sampler passes when
     /// coordinates are below 2²⁸·r): never blocks a pair the exact formula
     /// keeps, at coordinates up to the limit.
@@ -267,7 +267,7 @@ mod tests {
             for _ in 0..500 {
                 let origin: [f64; N] =
                     core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * scale * r);
-                let mut cache = Blockers::<N, 8>::new(origin, r);
+                let mut cache = ConflictCache::<N, 8>::new(origin, r);
                 let offset = direction::<N>(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
                 let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
                 #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
@@ -291,7 +291,7 @@ mod tests {
 
     #[test]
     fn a_full_cache_forgets_the_oldest() {
-        let mut cache = Blockers::<2, 2>::new([5.0, 5.0], 0.2);
+        let mut cache = ConflictCache::<2, 2>::new([5.0, 5.0], 0.2);
         for q in [[4.5, 4.5], [5.0, 5.0], [5.5, 5.5]] {
             cache.push(&q);
         }
@@ -302,7 +302,7 @@ mod tests {
 
     #[test]
     fn empty_cache_blocks_nothing() {
-        let cache = Blockers::<3, 8>::new([0.0; 3], 1e150);
+        let cache = ConflictCache::<3, 8>::new([0.0; 3], 1e150);
         assert!(!cache.block(&[0.0; 3], f64::MAX), "plain");
         assert!(
             !cache.block_periodic(&[0.0; 3], f64::MAX, &[1.0; 3]),

@@ -1,9 +1,9 @@
 //! The sampler: Bridson's algorithm, configured and validated up front, run
 //! lazily as an iterator.
 
-use crate::annulus::{Ahead, CandidateSampler, Candidates};
-use crate::blockers::{Blockers, NEAR_ORIGIN};
 use crate::budget::{reserve_one, vec_bytes};
+use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
+use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -316,7 +316,7 @@ impl<const N: usize> PoissonDisk<N> {
             budget: c.max_grid_bytes,
             error: None,
             started: false,
-            ahead: Ahead::new(),
+            ahead: OffsetBatch::new(),
             next_pick: [None; 2],
         }
     }
@@ -375,7 +375,7 @@ pub struct Iter<const N: usize, R> {
     /// Why the stream ended early, if it did.
     error: Option<Error>,
     started: bool,
-    ahead: Ahead<N>,
+    ahead: OffsetBatch<N>,
     /// The indices of the next two picks, drawn ahead (see
     /// [`State::grow_cached`]).
     next_pick: [Option<usize>; 2],
@@ -516,7 +516,7 @@ struct State<'a, const N: usize, R> {
     candidates: &'a CandidateSampler<N>,
     radius_squared: f64,
     attempts: u32,
-    ahead: &'a mut Ahead<N>,
+    ahead: &'a mut OffsetBatch<N>,
     next_pick: &'a mut [Option<usize>; 2],
     budget: u64,
     made: u64,
@@ -543,7 +543,7 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
     /// at least `r` from every point; if none is, retire the active point.
     /// The active point's neighbours, and the points that turn candidates
     /// away, are remembered for the rest of the pick and checked first
-    /// ([`Blockers`]); that changes no decision.
+    /// ([`ConflictCache`]); that changes no decision.
     #[inline(always)]
     fn grow_cached<G: NeighbourGrid<N>, const B: usize>(self, grid: &mut G) -> Option<[f64; N]> {
         let periodic = self.domain.any_periodic();
@@ -570,8 +570,8 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                 grid.prefetch(p);
             }
             let mut state = self.candidates.start(self.rng);
-            let mut blockers = Blockers::<N, B>::new(parent, radius);
-            grid.seed(&parent, &mut blockers);
+            let mut cache = ConflictCache::<N, B>::new(parent, radius);
+            grid.seed(&parent, B, |q| cache.push(q));
             // Far from every face (the usual case), no candidate can leave
             // the box: skip the per-attempt test. Candidates lie within
             // 2r·(1 + 1e-7) of the parent; the test keeps 4r.
@@ -579,11 +579,11 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
             // Coordinates below 2²⁸·r: the candidate is its offset from the
             // parent to within 2⁻²⁵·r, so the cache takes the offset drawn
             // ahead in units of r instead of recomputing it
-            // (`Blockers::block_relative`).
+            // (`ConflictCache::block_relative`).
             let near_origin =
                 !periodic && ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
             for _ in 0..self.attempts {
-                let (offset, unit) = if ahead {
+                let (offset, offset_in_r) = if ahead {
                     self.ahead.next(self.candidates, self.rng)
                 } else {
                     (self.candidates.offset(self.rng, &mut state), [0.0; N])
@@ -593,17 +593,17 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                     continue;
                 }
                 let blocked = if periodic {
-                    blockers.block_periodic(&candidate, self.radius_squared, &periods)
+                    cache.block_periodic(&candidate, self.radius_squared, &periods)
                 } else if near_origin {
-                    blockers.block_relative(&unit)
+                    cache.block_relative(&offset_in_r)
                 } else {
-                    blockers.block(&candidate, self.radius_squared)
+                    cache.block(&candidate, self.radius_squared)
                 };
                 if blocked {
                     continue;
                 }
                 if let Some(q) = grid.conflict(&candidate) {
-                    blockers.push(&q);
+                    cache.push(&q);
                     continue;
                 }
                 match store(grid, self.active, candidate, self.budget) {

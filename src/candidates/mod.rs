@@ -1,4 +1,12 @@
-//! Where candidates are thrown around an active point.
+//! Where candidates are thrown around an active point: the candidate
+//! distributions, the sampler that draws them, and offsets drawn eight
+//! ahead ([`OffsetBatch`]). The tables behind them are in [`tables`].
+
+mod tables;
+
+use tables::{
+    TWO_POW_M32, angle_direction, angle_directions, cos_sin, cube_entry, cube_root_near, cube_step,
+};
 
 use crate::random::{symmetric, symmetric_pair, unit};
 use crate::vector::{norm_squared, scale};
@@ -96,7 +104,7 @@ impl<const N: usize> CandidateSampler<N> {
         }
     }
 
-    /// Whether offsets come from [`Ahead`]: annulus offsets in 2-D and 3-D,
+    /// Whether offsets come from [`OffsetBatch`]: annulus offsets in 2-D and 3-D,
     /// which need no per-pick state and no rejection loop.
     pub(crate) fn reads_ahead(&self) -> bool {
         self.kind == Candidates::Annulus && (N == 2 || N == 3)
@@ -239,19 +247,19 @@ fn place_3d<const N: usize>(d: &mut [f64; N], rho: f64, z: f64, c: f64, s: f64) 
 /// generator's draws in order, and only the interleaving with the pick
 /// draws differs from drawing them one by one.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Ahead<const N: usize> {
+pub(crate) struct OffsetBatch<const N: usize> {
     offsets: [[f64; N]; AHEAD],
     /// The same offsets in units of `r`, as `f32`: the quick cache check's
     /// candidate position relative to the active point (see
-    /// `Blockers::block_relative`), computed here eight at a time.
+    /// `ConflictCache::block_relative`), computed here eight at a time.
     units: [[f32; N]; AHEAD],
     used: usize,
 }
 
-/// How many offsets [`Ahead`] draws at once.
+/// How many offsets [`OffsetBatch`] draws at once.
 const AHEAD: usize = 8;
 
-impl<const N: usize> Ahead<N> {
+impl<const N: usize> OffsetBatch<N> {
     pub(crate) const fn new() -> Self {
         Self {
             offsets: [[0.0; N]; AHEAD],
@@ -321,207 +329,6 @@ fn unit_direction<const N: usize, R: Rng + ?Sized>(rng: &mut R) -> [f64; N] {
         if (1.0 / 64.0..1.0).contains(&n2) {
             return scale(&v, 1.0 / n2.sqrt());
         }
-    }
-}
-
-const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
-
-/// Entries in [`DIRECTIONS`] and [`CUBE_ROOTS`]; the top `log2` of a
-/// draw's 32 bits pick one.
-const TABLE_BITS: u32 = 8;
-
-/// `(cos, sin)` of `2π·i/256`, computed at compile time by [`series`]: basic
-/// arithmetic only, so the same bits on every platform.
-const DIRECTIONS: [(f64, f64); 1 << TABLE_BITS] = directions();
-
-const fn directions() -> [(f64, f64); 1 << TABLE_BITS] {
-    const QUARTER: usize = 1 << (TABLE_BITS - 2);
-    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
-    let mut i = 0;
-    while i < table.len() {
-        // Each quadrant from [0, π/2) by a quarter turn, so the series only
-        // ever sees small angles.
-        #[expect(clippy::cast_precision_loss, reason = "i < 64")]
-        let t = (i % QUARTER) as f64 * (core::f64::consts::TAU / (1 << TABLE_BITS) as f64);
-        let (c, s) = series(t);
-        #[expect(
-            clippy::indexing_slicing,
-            reason = "i < table.len() by the loop condition (compile time only)"
-        )]
-        let entry = &mut table[i];
-        *entry = match i / QUARTER {
-            0 => (c, s),
-            1 => (-s, c),
-            2 => (-c, -s),
-            _ => (s, -c),
-        };
-        i += 1;
-    }
-    table
-}
-
-/// The unit direction at angle `2π · bits / 2³²`, without a branch: the top
-/// 8 bits pick a table entry, the other 24 a rotation by `δ < 2π/256`, whose
-/// cosine and sine short Taylor polynomials give to within 1e-17.
-#[inline(always)]
-fn angle_direction(bits: u32) -> (f64, f64) {
-    rotate(table_direction(bits), rotation(bits))
-}
-
-/// [`angle_direction`] for [`AHEAD`] angles at once, step by step over all
-/// of them (the table look-ups, then the polynomials), bit for bit the same.
-#[inline(always)]
-fn angle_directions(bits: &[u32; AHEAD]) -> ([f64; AHEAD], [f64; AHEAD]) {
-    let table = bits.map(table_direction);
-    let delta = bits.map(rotation);
-    let mut c = [0.0; AHEAD];
-    let mut s = [0.0; AHEAD];
-    for (((c, s), &t), &d) in c.iter_mut().zip(&mut s).zip(&table).zip(&delta) {
-        (*c, *s) = rotate(t, d);
-    }
-    (c, s)
-}
-
-/// The table entry for the top 8 bits of an angle.
-#[inline(always)]
-fn table_direction(bits: u32) -> (f64, f64) {
-    by_top_bits(&DIRECTIONS, bits)
-}
-
-/// The entry of a [`TABLE_BITS`]-bit table that the top bits of a 32-bit
-/// draw select (`bits >> 24 < 256`: never the fallback).
-#[inline(always)]
-fn by_top_bits(table: &[(f64, f64); 1 << TABLE_BITS], bits: u32) -> (f64, f64) {
-    table
-        .get((bits >> (32 - TABLE_BITS)) as usize)
-        .copied()
-        .unwrap_or((1.0, 0.0))
-}
-
-/// The rest of the angle, `δ < 2π/256`, from the low 24 bits.
-#[inline(always)]
-fn rotation(bits: u32) -> f64 {
-    const DELTA_PER_UNIT: f64 = core::f64::consts::TAU * TWO_POW_M32;
-    f64::from(bits & ((1 << (32 - TABLE_BITS)) - 1)) * DELTA_PER_UNIT
-}
-
-/// `(c, s)` rotated by `delta`, whose cosine and sine come from short
-/// Taylor polynomials.
-#[inline(always)]
-fn rotate((c, s): (f64, f64), delta: f64) -> (f64, f64) {
-    let x = delta * delta;
-    let x2 = x * x;
-    // Estrin's scheme: two short chains instead of one long one.
-    let cd = (1.0 - 0.5 * x) + x2 * (1.0 / 24.0 - x * (1.0 / 720.0));
-    let sd = delta * ((1.0 - x * (1.0 / 6.0)) + x2 * (1.0 / 120.0 - x * (1.0 / 5040.0)));
-    (c * cd - s * sd, s * cd + c * sd)
-}
-
-/// For each interval `i` of `u = bits / 2³²` that the top 8 bits select,
-/// `(∛a₀, 7·2⁻³²/a₀)` at its midpoint `a₀ = 1 + 7·(i + ½)/256`: the cube
-/// root there, and the scale that turns the low 24 bits' distance from the
-/// midpoint into `t = (a - a₀)/a₀`. Computed at compile time with basic
-/// arithmetic (Halley steps), so the same bits on every platform.
-const CUBE_ROOTS: [(f64, f64); 1 << TABLE_BITS] = cube_roots();
-
-const fn cube_roots() -> [(f64, f64); 1 << TABLE_BITS] {
-    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
-    let mut i = 0;
-    while i < table.len() {
-        #[expect(clippy::cast_precision_loss, reason = "i < 256")]
-        let a = 1.0 + 7.0 * (i as f64 + 0.5) / (1 << TABLE_BITS) as f64;
-        // Halley's iteration from 1.5 (error under 0.5 for 1 <= a < 8)
-        // cubes the error each step: 8 steps are far more than enough.
-        let mut y = 1.5;
-        let mut step = 0;
-        while step < 8 {
-            let y3 = y * y * y;
-            y *= (y3 + 2.0 * a) / (2.0 * y3 + a);
-            step += 1;
-        }
-        #[expect(
-            clippy::indexing_slicing,
-            reason = "i < table.len() by the loop condition (compile time only)"
-        )]
-        let entry = &mut table[i];
-        *entry = (y, 7.0 * TWO_POW_M32 / a);
-        i += 1;
-    }
-    table
-}
-
-/// The [`CUBE_ROOTS`] entry for the top 8 bits of a radius draw.
-#[inline(always)]
-fn cube_entry(bits: u32) -> (f64, f64) {
-    by_top_bits(&CUBE_ROOTS, bits)
-}
-
-/// The low 24 bits' signed distance from their interval's midpoint, in
-/// units of `2⁻³²` of `u`: `-2²³ ..= 2²³ - 1`.
-#[inline(always)]
-fn cube_step(bits: u32) -> f64 {
-    const LOW: u32 = (1 << (32 - TABLE_BITS)) - 1;
-    const HALF: i32 = 1 << (31 - TABLE_BITS);
-    #[expect(clippy::cast_possible_wrap, reason = "24 bits fit an i32")]
-    let low = (bits & LOW) as i32;
-    f64::from(low - HALF)
-}
-
-/// `root·∛(1 + t)` for `|t| <= 7/512`, by the binomial series of `∛(1 + t)`
-/// through `t⁷` (the first term left out is below `2e-17`), as
-/// `root + root·(t·(…))` so that only the last addition rounds at the
-/// result's scale, and in Estrin's form: shorter chains than Horner's.
-/// With [`CUBE_ROOTS`] this replaced a polynomial fit and two Halley steps,
-/// whose two divisions a 3-D profile showed waiting (`ARCHITECTURE.md`).
-#[inline(always)]
-fn cube_root_near(root: f64, t: f64) -> f64 {
-    const C: [f64; 7] = [
-        1.0 / 3.0,
-        -1.0 / 9.0,
-        5.0 / 81.0,
-        -10.0 / 243.0,
-        22.0 / 729.0,
-        -154.0 / 6561.0,
-        374.0 / 19683.0,
-    ];
-    let [c1, c2, c3, c4, c5, c6, c7] = C;
-    let t2 = t * t;
-    let t4 = t2 * t2;
-    let q = ((c1 + c2 * t) + t2 * (c3 + c4 * t)) + t4 * ((c5 + c6 * t) + t2 * c7);
-    root + root * (t * q)
-}
-
-/// `(cos x, sin x)` by their Taylor series through `x²⁴` and `x²⁵`: within
-/// an ulp or two for `|x| <= π/2`. A `const fn`, so [`DIRECTIONS`] is built by
-/// the compiler.
-const fn series(x: f64) -> (f64, f64) {
-    let x2 = x * x;
-    let (mut c, mut s) = (1.0, x);
-    let (mut tc, mut ts) = (1.0, x);
-    let mut m = 1.0;
-    while m < 13.0 {
-        tc *= -x2 / ((2.0 * m - 1.0) * (2.0 * m));
-        ts *= -x2 / ((2.0 * m) * (2.0 * m + 1.0));
-        c += tc;
-        s += ts;
-        m += 1.0;
-    }
-    (c, s)
-}
-
-/// `(cos θ, sin θ)` for `0 <= θ <= 2π`, by [`series`] after reduction to
-/// `|x| <= π/4`: bit-identical on every platform, accurate to about 1e-15,
-/// ample for spacing candidate directions.
-fn cos_sin(theta: f64) -> (f64, f64) {
-    let quarter = core::f64::consts::FRAC_PI_2;
-    let turns = (theta / quarter).round();
-    let (c, s) = series(theta - turns * quarter);
-    // `turns` is 0..=4 here, so the rem_euclid result fits any integer.
-    match turns.rem_euclid(4.0) {
-        0.0 => (c, s),
-        1.0 => (-s, c),
-        2.0 => (-c, -s),
-        _ => (s, -c),
     }
 }
 
