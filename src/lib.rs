@@ -135,6 +135,7 @@ mod grid;
 mod huge_pages;
 mod prefetch;
 mod random;
+mod render;
 #[cfg(feature = "serde")]
 mod serde_array;
 mod tiled;
@@ -149,6 +150,7 @@ pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
+pub use crate::render::{CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler, PoissonPixelSampler};
 pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
 pub use rand;
 
