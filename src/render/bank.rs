@@ -17,10 +17,11 @@ use core::fmt;
 /// Sets per dimension kind (plane, line) in a bank.
 pub(crate) const SETS: usize = 32;
 
-/// The relative radius ρ a Bridson set reaches at `k = 30` (measured: about
-/// 0.75 in 2-D, with a spread of a few per cent, and 0.67 in 1-D, where it
-/// is the count times the radius), a little under, so that a run planned
-/// for `c` points gives about `c` or a few more.
+/// A little under the relative radius ρ a Bridson set reaches at `k = 30`
+/// (about 0.75 in 2-D, as the README reports; in 1-D, where ρ is the count
+/// times the radius, gaps fall between `r` and `2r`, so about 0.67), so that
+/// a run planned for `c` points gives about `c` or a few more. A short run
+/// is simply repeated at a smaller radius.
 fn bridson_rho<const N: usize>() -> f64 {
     if N == 1 { 0.66 } else { 0.74 }
 }

@@ -4,8 +4,8 @@
 //! crowded by its neighbours.
 //!
 //! Used to turn a Bridson set, which has about (never exactly) the wanted
-//! count, into a set of exactly `n` points that is better spread than
-//! either the input or a Bridson set of `n` points.
+//! count, into a set of exactly `n` points. Removing points never brings
+//! two closer, so the Bridson set's minimum distance is kept.
 
 /// The largest minimum distance `n` points can have in the unit volume,
 /// from the densest packing: `1/n` on the line, the hexagonal lattice's
