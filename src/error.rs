@@ -98,6 +98,30 @@ pub enum Error {
         /// The budget in force.
         budget: u64,
     },
+    /// Occurs when a pixel sampler is asked for 0 samples per pixel, or for
+    /// more than it supports.
+    InvalidSamplesPerPixel {
+        /// The count asked for.
+        spp: u32,
+        /// The largest count the sampler supports.
+        max: u32,
+    },
+    /// Occurs when a pixel sampler is moved to a sample index at or past its
+    /// samples per pixel.
+    SampleIndexOutOfRange {
+        /// The index asked for.
+        index: u32,
+        /// The samples per pixel: valid indices are `0..spp`.
+        spp: u32,
+    },
+    /// Occurs when a pixel sampler that knows the image size is moved to a
+    /// pixel outside it.
+    PixelOutOfImage {
+        /// The pixel asked for, `[x, y]`.
+        pixel: [u32; 2],
+        /// The image size, `[width, height]`.
+        resolution: [u32; 2],
+    },
 }
 
 impl fmt::Display for Error {
@@ -153,6 +177,18 @@ impl fmt::Display for Error {
                 "the run stopped after {points} points: the next one would take its memory past \
                  the budget of {budget} bytes (the points made are valid, but not complete)"
             ),
+            Self::InvalidSamplesPerPixel { spp, max } => write!(
+                f,
+                "the samples per pixel must be in 1..={max}, not {spp}"
+            ),
+            Self::SampleIndexOutOfRange { index, spp } => write!(
+                f,
+                "the sample index {index} is past the {spp} samples per pixel"
+            ),
+            Self::PixelOutOfImage {
+                pixel: [x, y],
+                resolution: [w, h],
+            } => write!(f, "the pixel ({x}, {y}) lies outside the {w}x{h} image"),
         }
     }
 }

@@ -133,6 +133,8 @@
 
 // Layers, top to bottom; each imports only from its own layer or below
 // (ARCHITECTURE.md has the map).
+// Renderer: camera samples behind a pbrt-shaped trait (public API only).
+mod render;
 // Streaming.
 mod tiled;
 // Core: the sampler, where its candidates fall, its per-pick cache.
@@ -159,6 +161,7 @@ pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
+pub use crate::render::{CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler, PoissonPixelSampler};
 pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
 };
