@@ -213,7 +213,7 @@ fn small_counts_are_exact_and_spread() {
 }
 
 #[test]
-#[ignore = "builds 300 banks: about 3 minutes in a debug build; run with --release -- --ignored"]
+#[ignore = "builds 300 banks: minutes in a debug build; .ci/run runs it optimised (--profile bench -- --ignored)"]
 fn every_count_up_to_300_is_exact_and_spread() {
     check_counts(1..=300);
 }
