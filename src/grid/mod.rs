@@ -82,8 +82,12 @@ pub(crate) struct SparsePlan<const N: usize> {
     pub(crate) side: [f64; N],
     pub(crate) reach: [i64; N],
     pub(crate) eta: f64,
-    /// What the first point costs: the smallest hash table and one active
-    /// entry. The sparse grid allocates nothing before it.
+    /// Whether the cells' lists start from an array of every cell (a
+    /// small box in cells) rather than a hash table of the occupied ones.
+    pub(crate) array: bool,
+    /// What the grid allocates before its first point (the array, if any)
+    /// and what the first point costs (with the hash table, its smallest
+    /// table), plus one active entry.
     pub(crate) bytes: u64,
 }
 
@@ -269,7 +273,11 @@ fn ln_max_points<const N: usize>(domain: &Domain<N>, radius: f64) -> f64 {
     ln
 }
 
-fn plan_sparse<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<SparsePlan<N>, u64> {
+fn plan_sparse<const N: usize>(
+    domain: &Domain<N>,
+    radius: f64,
+    budget: u64,
+) -> Result<SparsePlan<N>, u64> {
     let extent = domain.extent();
     let periodic = domain.periodic();
     let mut cells = [0i64; N];
@@ -297,12 +305,20 @@ fn plan_sparse<const N: usize>(domain: &Domain<N>, radius: f64) -> Result<Sparse
         let p = bounded_reach(needed_reach(radius, s, eta), m, periodic);
         *r = i64::try_from(p).map_err(|_| u64::MAX)?;
     }
+    // Cell lists in an array rather than a hash table where the array is
+    // small: a look-up is then an index, not a hash and a probe.
+    let array_bytes = cells
+        .iter()
+        .try_fold(4u64, |acc, &m| acc.checked_mul(u64::try_from(m).ok()?))
+        .filter(|&b| b <= sparse::MAX_ARRAY_BYTES && b <= budget / 4);
+    let first = sparse::first_point_bytes::<N>(array_bytes.is_some());
     Ok(SparsePlan {
         cells,
         side,
         reach,
         eta,
-        bytes: sparse::first_point_bytes::<N>(),
+        array: array_bytes.is_some(),
+        bytes: array_bytes.unwrap_or(0).saturating_add(first),
     })
 }
 
@@ -321,7 +337,7 @@ pub(crate) fn plan<const N: usize>(
         }
     }
     let dense = || plan_dense(domain, radius, max_points);
-    let sparse = || plan_sparse(domain, radius);
+    let sparse = || plan_sparse(domain, radius, budget);
     let too_large = |needed: u64| Error::GridTooLarge { needed, budget };
     // Only what is allocated before the first point is checked here: the
     // points themselves are counted as they come (see `budget.rs`).
@@ -387,7 +403,8 @@ fn fallback_sparse<const N: usize>(d: &DensePlan<N>) -> SparsePlan<N> {
         side: d.side,
         reach: d.reach.map(|p| i64::try_from(p).unwrap_or(i64::MAX)),
         eta: d.eta,
-        bytes: sparse::first_point_bytes::<N>(),
+        array: false,
+        bytes: sparse::first_point_bytes::<N>(false),
     }
 }
 
@@ -465,7 +482,7 @@ mod tests {
                 }
             }
             assert!(p.bytes < 1 << 20, "{N}-D r = {r}: {} bytes", p.bytes);
-            let s = plan_sparse(&d, r).unwrap();
+            let s = plan_sparse(&d, r, DEFAULT_MAX_GRID_BYTES).unwrap();
             for (&reach, &m) in s.reach.iter().zip(&s.cells) {
                 assert!(reach <= m, "sparse {N}-D r = {r}: reach {reach} > {m}");
             }

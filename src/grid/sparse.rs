@@ -1,14 +1,22 @@
-//! The sparse background grid: a hash map from cells to the points in them.
+//! The sparse background grid: cells of side `≈ r`, each with the list of
+//! the points in it.
 //!
 //! Used where a dense grid would not fit the memory budget (a huge box) or
 //! would search too many cells (5-D and above). Cells have side `≈ r`, so a
 //! cell holds a few points and a search visits only the cells whose box comes
 //! within `r` of the candidate, found by branch and bound over the axes:
-//! about `Σ_k C(N,k)·V_k` cells (9 in 2-D, 50 in 4-D, 1 170 in 8-D). Memory
-//! grows with the number of points, never with the volume of the box.
+//! about `Σ_k C(N,k)·V_k` cells (9 in 2-D, 50 in 4-D, 1 170 in 8-D).
+//!
+//! The lists live in one of two stores ([`Store`]): where the box holds few
+//! cells (at most [`MAX_ARRAY_BYTES`] of list heads, and a quarter of the
+//! budget), an array with a head per cell, so that each of those look-ups
+//! is an index; otherwise a hash table of the occupied cells, whose memory
+//! grows with the number of points, never with the volume of the box. Both
+//! find a conflict exactly when there is one; which one they report first
+//! may differ, which changes no decision of the sampler.
 
 use super::{NeighbourGrid, SparsePlan};
-use crate::budget::bytes_of;
+use crate::budget::{bytes_of, reserve_one, vec_bytes};
 use crate::domain::Domain;
 use crate::vector::{periodic_distance_squared, zip_map};
 use core::hash::{BuildHasherDefault, Hasher};
@@ -42,15 +50,101 @@ fn entry_bytes<const N: usize>() -> u64 {
     bytes_of::<([i64; N], Cell<N>)>(1)
 }
 
-/// What storing the first point takes: the smallest table (4 buckets) and
-/// one active entry.
-pub(crate) fn first_point_bytes<const N: usize>() -> u64 {
-    table_bytes(3, entry_bytes::<N>()).saturating_add(bytes_of::<[f64; N]>(1))
+/// The most bytes of list heads (4 a cell) the array store may take: 64 MiB,
+/// 16 M cells. Past it, most cells of any set Bridson makes stay empty, and
+/// the hash table is smaller.
+pub(crate) const MAX_ARRAY_BYTES: u64 = 64 << 20;
+
+/// What storing the first point takes beyond what is allocated up front:
+/// with the array store, the entries' first block (the sentinel and the
+/// point); with the hash table, its smallest table (4 buckets); and one
+/// active entry either way.
+pub(crate) fn first_point_bytes<const N: usize>(array: bool) -> u64 {
+    let store = if array {
+        bytes_of::<Entry<N>>(2)
+    } else {
+        table_bytes(3, entry_bytes::<N>())
+    };
+    store.saturating_add(bytes_of::<[f64; N]>(1))
+}
+
+/// A stored point and the index of the next one in its cell's list
+/// ([`END`] for none).
+#[derive(Clone, Copy, Debug)]
+struct Entry<const N: usize> {
+    point: [f64; N],
+    next: u32,
+}
+
+/// The end of a list: entry 0 is a sentinel, never a point.
+const END: u32 = 0;
+
+/// Where the cells' point lists are kept.
+#[derive(Debug)]
+enum Store<const N: usize> {
+    /// A head per cell of the box, into one vector of entries.
+    Array {
+        heads: Vec<u32>,
+        entries: Vec<Entry<N>>,
+        stride: [usize; N],
+    },
+    /// The occupied cells only, each with its points inline (two) or on
+    /// the heap.
+    Table {
+        map: HashMap<[i64; N], Cell<N>, BuildHasherDefault<CellHasher>>,
+        /// Heap bytes of the cells that spilled out of their inline room.
+        spilled: u64,
+    },
+}
+
+impl<const N: usize> Store<N> {
+    /// An array store for `counts` cells, if it can be allocated.
+    fn array(counts: &[i64; N]) -> Option<Self> {
+        let mut stride = [0usize; N];
+        let mut total = 1usize;
+        for (s, &m) in stride.iter_mut().zip(counts) {
+            *s = total;
+            total = total.checked_mul(usize::try_from(m).ok()?)?;
+        }
+        let mut heads = Vec::new();
+        heads.try_reserve_exact(total).ok()?;
+        heads.resize(total, END);
+        let mut entries = Vec::new();
+        entries.try_reserve_exact(1).ok()?;
+        entries.push(Entry {
+            point: [f64::INFINITY; N],
+            next: END,
+        });
+        Some(Self::Array {
+            heads,
+            entries,
+            stride,
+        })
+    }
+
+    fn table() -> Self {
+        Self::Table {
+            map: HashMap::default(),
+            spilled: 0,
+        }
+    }
+}
+
+/// Index of a cell (every coordinate in `0..counts`) in the array store.
+#[inline(always)]
+fn linear<const N: usize>(cell: &[i64; N], stride: &[usize; N]) -> usize {
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "cell coordinates are in 0..counts, whose product fits usize"
+    )]
+    let index = cell.iter().zip(stride).map(|(&c, &s)| c as usize * s).sum();
+    index
 }
 
 #[derive(Debug)]
 pub(crate) struct Sparse<const N: usize> {
-    map: HashMap<[i64; N], Cell<N>, BuildHasherDefault<CellHasher>>,
+    store: Store<N>,
     lo: [f64; N],
     side: [f64; N],
     inv_side: [f64; N],
@@ -60,14 +154,19 @@ pub(crate) struct Sparse<const N: usize> {
     periodic: [bool; N],
     periods: [f64; N],
     radius_squared: f64,
-    /// Heap bytes of the cells that spilled out of their inline room.
-    spilled: u64,
 }
 
 impl<const N: usize> Sparse<N> {
     pub(crate) fn new(plan: &SparsePlan<N>, domain: &Domain<N>, radius: f64) -> Self {
+        // The array only where planned; should it not be granted, the table
+        // (whose memory is counted as it grows) serves instead.
+        let store = if plan.array {
+            Store::array(&plan.cells).unwrap_or_else(Store::table)
+        } else {
+            Store::table()
+        };
         Self {
-            map: HashMap::default(),
+            store,
             lo: domain.lo(),
             side: plan.side,
             inv_side: plan.side.map(|s| 1.0 / s),
@@ -77,7 +176,6 @@ impl<const N: usize> Sparse<N> {
             periodic: domain.periodic(),
             periods: domain.periods(),
             radius_squared: radius * radius,
-            spilled: 0,
         }
     }
 
@@ -115,12 +213,7 @@ impl<const N: usize> Sparse<N> {
         p: &[f64; N],
     ) -> Option<[f64; N]> {
         if axis == N {
-            return self.map.get(key).and_then(|points| {
-                points
-                    .iter()
-                    .find(|q| periodic_distance_squared(p, q, &self.periods) < self.radius_squared)
-                    .copied()
-            });
+            return self.conflict_in(key, p);
         }
         let (m, reach, c) = (self.counts[axis], self.reach[axis], cell[axis]);
         if self.periodic[axis] && 2 * reach + 1 >= m {
@@ -163,6 +256,33 @@ impl<const N: usize> Sparse<N> {
     }
 }
 
+impl<const N: usize> Sparse<N> {
+    /// A point of cell `key` closer than `r` to `p`, if any.
+    #[inline(always)]
+    fn conflict_in(&self, key: &[i64; N], p: &[f64; N]) -> Option<[f64; N]> {
+        let close =
+            |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < self.radius_squared;
+        match &self.store {
+            Store::Array {
+                heads,
+                entries,
+                stride,
+            } => {
+                let mut at = heads.get(linear(key, stride)).copied().unwrap_or(END);
+                while at != END {
+                    let entry = entries.get(at as usize)?;
+                    if close(&entry.point) {
+                        return Some(entry.point);
+                    }
+                    at = entry.next;
+                }
+                None
+            }
+            Store::Table { map, .. } => map.get(key)?.iter().find(|q| close(q)).copied(),
+        }
+    }
+}
+
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let cell = self.cell_of(p);
@@ -172,12 +292,23 @@ impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     }
 
     fn bytes(&self) -> u64 {
-        table_bytes(self.map.capacity(), entry_bytes::<N>()).saturating_add(self.spilled)
+        match &self.store {
+            Store::Array { heads, entries, .. } => {
+                vec_bytes(heads).saturating_add(vec_bytes(entries))
+            }
+            Store::Table { map, spilled } => {
+                table_bytes(map.capacity(), entry_bytes::<N>()).saturating_add(*spilled)
+            }
+        }
     }
 
     fn reserve(&mut self, p: &[f64; N], spare: u64) -> bool {
         let cell = self.cell_of(p);
-        if let Some(points) = self.map.get_mut(&cell) {
+        let (map, spilled) = match &mut self.store {
+            Store::Array { entries, .. } => return reserve_one(entries, spare).is_some(),
+            Store::Table { map, spilled } => (map, spilled),
+        };
+        if let Some(points) = map.get_mut(&cell) {
             if points.len() < points.capacity() {
                 return true;
             }
@@ -190,10 +321,10 @@ impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
             if points.try_reserve_exact(wanted - points.len()).is_err() {
                 return false;
             }
-            self.spilled = self.spilled.saturating_add(heap_bytes(points) - before);
+            *spilled = spilled.saturating_add(heap_bytes(points) - before);
             return true;
         }
-        let (len, capacity) = (self.map.len(), self.map.capacity());
+        let (len, capacity) = (map.len(), map.capacity());
         if len < capacity {
             return true;
         }
@@ -204,17 +335,37 @@ impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
         if table_bytes(wanted, entry) > spare {
             return false;
         }
-        self.map.try_reserve(wanted - len).is_ok()
+        map.try_reserve(wanted - len).is_ok()
     }
 
     fn insert(&mut self, p: [f64; N]) -> bool {
         let cell = self.cell_of(&p);
-        let points = self.map.entry(cell).or_default();
-        let before = heap_bytes(points);
-        points.push(p);
-        self.spilled = self
-            .spilled
-            .saturating_add(heap_bytes(points).saturating_sub(before));
+        match &mut self.store {
+            Store::Array {
+                heads,
+                entries,
+                stride,
+            } => {
+                // u32 indices: past them the run ends, the set stays valid.
+                let (Ok(at), Some(head)) = (
+                    u32::try_from(entries.len()),
+                    heads.get_mut(linear(&cell, stride)),
+                ) else {
+                    return false;
+                };
+                entries.push(Entry {
+                    point: p,
+                    next: *head,
+                });
+                *head = at;
+            }
+            Store::Table { map, spilled } => {
+                let points = map.entry(cell).or_default();
+                let before = heap_bytes(points);
+                points.push(p);
+                *spilled = spilled.saturating_add(heap_bytes(points).saturating_sub(before));
+            }
+        }
         true
     }
 }
