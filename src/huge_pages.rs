@@ -3,8 +3,8 @@
 //! The second `unsafe` block in the crate. It pays: the grid and the point
 //! vector are tens of megabytes read at random (each pick lands anywhere),
 //! so with 4 KiB pages nearly every such read also misses the TLB and walks
-//! the page tables. Transparent huge pages (2 MiB) took a million 3-D
-//! points 8–10 % faster in paired runs (ARCHITECTURE.md has them). Most distributions
+//! the page tables. Transparent huge pages (2 MiB) cut those walks
+//! (`docs/performance-journal.md` has the paired runs). Most distributions
 //! set THP to `madvise` mode, where only memory marked with `madvise`
 //! gets huge pages; in `always` mode the kernel does it anyway, in `never`
 //! it refuses. A no-op off Linux, and for buffers that hold no whole

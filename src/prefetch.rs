@@ -3,8 +3,8 @@
 //! One of the crate's two `unsafe` blocks (the other is
 //! `huge_pages.rs`). It pays: in 3-D the sampler waits
 //! on memory (random picks land anywhere in a grid of tens of megabytes),
-//! and asking for the next picks' memory while this pick runs took a
-//! million 3-D points from 6.8 s to 5.2 s (ARCHITECTURE.md has the runs).
+//! and asking for the next picks' memory while this pick runs hides much of
+//! that wait (`docs/performance-journal.md` has the runs).
 
 /// Starts loading the cache line of `slice[index]`. Only a hint: nothing is
 /// read and nothing observable changes, so any `index` is harmless, in

@@ -153,8 +153,8 @@ pub(super) fn cube_step(bits: u32) -> f64 {
 /// through `t⁷` (the first term left out is below `2e-17`), as
 /// `root + root·(t·(…))` so that only the last addition rounds at the
 /// result's scale, and in Estrin's form: shorter chains than Horner's.
-/// With [`CUBE_ROOTS`] this replaced a polynomial fit and two Halley steps,
-/// whose two divisions a 3-D profile showed waiting (`ARCHITECTURE.md`).
+/// With [`CUBE_ROOTS`] it needs no division, which the 3-D loop would wait
+/// on (the journal, `docs/performance-journal.md`, has the profile).
 #[inline(always)]
 pub(super) fn cube_root_near(root: f64, t: f64) -> f64 {
     const C: [f64; 7] = [

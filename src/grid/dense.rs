@@ -6,9 +6,9 @@
 //! neighbour check is then a run over a precomputed list of linear cell
 //! offsets, nearest first, for the half-cell the candidate lies in: eight
 //! cells' indices at a time without a branch, then the points of the
-//! occupied ones. (Storing the coordinates inline in the cells was as fast
-//! and took 3.5× the memory in 3-D, where 89 % of cells are empty: 222 MB
-//! against 63 MB peak for a million points.)
+//! occupied ones. Indices, not coordinates, live in the cells: most cells
+//! are empty (89 % in 3-D), so inline coordinates would multiply the grid's
+//! memory for no speed (`docs/performance-journal.md`).
 //!
 //! The grid is padded by the search reach on every side, so offsets never
 //! leave the array. On a periodic axis the padding holds ghost entries for
@@ -29,10 +29,9 @@ const EMPTY: u32 = 0;
 /// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
 /// about 14 points in its 125 cells; the cache keeps at most 16).
 const SEED_MAX: usize = 32;
-/// Cells a search looks up before checking the points they hold. 8 ran the
-/// fewest instructions (cachegrind, 100 000 points in 3-D: 1.96 G with 4,
-/// 1.92 G with 8, 1.98 G with 16, 2.10 G with 32; in 2-D 8 and 4 tie and
-/// 16 is 4 % worse): larger chunks look up cells past the conflict.
+/// Cells a search looks up before checking the points they hold: fewer
+/// cost a branch more often, more look up cells past the conflict; 8 ran
+/// the fewest instructions in 2-D and 3-D (the journal has the counts).
 const SCAN_CHUNK: usize = 8;
 
 #[derive(Debug)]

@@ -31,9 +31,9 @@ use crate::vector::unit_ball_volume;
 pub enum GridLayout {
     /// Dense when `N <= 4` and the dense grid fits the memory budget,
     /// otherwise sparse. From 5-D up the dense grid's neighbourhood
-    /// (thousands of cells per check) costs more than the sparse grid's hash
-    /// look-ups; in 4-D dense still wins (4.37 s against 5.70 s for 200 000
-    /// points, medians of 5 interleaved runs of `examples/throughput.rs`).
+    /// (thousands of cells per check) costs more than the sparse grid's
+    /// look-ups; in 4-D dense still wins (measured in
+    /// `docs/performance-journal.md`).
     #[default]
     Auto,
     /// Bridson's dense grid; an error if it does not fit the budget.

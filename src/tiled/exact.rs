@@ -12,12 +12,8 @@
 //! the final points of the rows above. Row `y` keeps its result; row
 //! `y + 1`'s is thrown away and done again with row `y` fixed. So every row
 //! is thinned with thinned rows on both sides and jointly along its length:
-//! no pixel border is favoured. (Two earlier versions thinned pixel by
-//! pixel. Weighing the thinned points of pixels emitted before against the
-//! oversampled points of pixels still to come left the left and top bands of
-//! a pixel 14–19 % denser and its right and bottom bands 32–37 % sparser;
-//! weighing the oversampled points on every side at a tuned share balanced
-//! 4 per pixel but not 1 or 8.)
+//! no pixel border is favoured; thinning pixel by pixel favours some
+//! (`docs/performance-journal.md` has the bands it left).
 //!
 //! Measured with `examples/stream.rs --pixels 160x160 --exact N`, the
 //! density in 0.1-pixel bands along the pixel edges relative to the pixel

@@ -13,10 +13,8 @@
 //!   key passes `y + 1 + 2r + J` (no active point left can reach it); its
 //!   pixels are then emitted. Pausing to emit changes nothing in the order
 //!   of the work, so pixel and row borders leave no trace in the set.
-//!   (An earlier version finished pixel by pixel, working the active points
-//!   within `2r` of the pixel: the front then stopped `2r` below each row
-//!   and left a seam there, measured as a ±10 % density ripple inside
-//!   pixels.)
+//!   Finishing pixel by pixel instead would stop the front `2r` below each
+//!   row and leave a seam there (`docs/performance-journal.md`).
 //! - [`Scheme::Paper`]: the scheme of Ye's "Implementing Bridson's Fast
 //!   Poisson Disk Sampling in PBRT" (§3): every pixel starts from a fresh
 //!   random seed, grows only inside itself, and checks its candidates against
@@ -44,7 +42,7 @@ use window::{Window, WindowPlan};
 
 /// How the streaming mode builds each pixel.
 ///
-/// See [`Tiled`] for the streaming API; `ARCHITECTURE.md` explains why the
+/// See [`Tiled`] for the streaming API; the module docs explain why the
 /// sweep has no border bias.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
