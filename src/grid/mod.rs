@@ -386,7 +386,13 @@ impl<const N: usize> Grid<N> {
         match plan {
             GridPlan::Dense(d) => match dense::Dense::try_new(d, domain, radius) {
                 Some(grid) => Grid::Dense(grid),
-                None => Grid::Sparse(sparse::Sparse::new(&fallback_sparse(d), domain, radius)),
+                None => {
+                    // The sparse plan's geometry (cells of side >= r) with
+                    // the hash table; `plan` has ruled out its errors
+                    // (`BoxTooWide`), but should one come, the dense cells.
+                    let s = plan_sparse(domain, radius, 0).unwrap_or_else(|_| fallback_sparse(d));
+                    Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
+                }
             },
             GridPlan::Sparse(s) => Grid::Sparse(sparse::Sparse::new(s, domain, radius)),
         }

@@ -76,6 +76,20 @@ struct Entry<const N: usize> {
     next: u32,
 }
 
+/// The most cells on one axis that can come within `r` of a candidate. The
+/// sparse plan's cells have side `>= r` (or the axis has one cell), so its
+/// reach is at most 2: five offsets, or at most five cells on a periodic
+/// axis searched whole.
+const MAX_STEPS: usize = 5;
+
+/// One cell on one axis that a search visits: its index there and the
+/// square of a lower bound on the distance to it along that axis.
+#[derive(Clone, Copy, Debug, Default)]
+struct Step {
+    key: i64,
+    gap2: f64,
+}
+
 /// The end of a list: entry 0 is a sentinel, never a point.
 const END: u32 = 0;
 
@@ -195,60 +209,100 @@ impl<const N: usize> Sparse<N> {
         cell
     }
 
-    /// Depth-first over the axes: picks the neighbour cell's index on
-    /// `axis`, keeping only those whose lower bound on the distance so far
-    /// (`partial`) stays below `r²`.
-    #[expect(
-        clippy::indexing_slicing,
-        reason = "every array has length N, and axis < N wherever one is indexed: \
-                  the function returns at axis == N first, and recurses with axis + 1"
-    )]
-    fn visit(
+    /// The cells on `axis` that can hold a point closer than `r` to a
+    /// candidate at `t` (from `lo`) in cell `c`, each with the square of a
+    /// lower bound on the distance to it along that axis, into `out`,
+    /// nearest first;
+    /// returns how many, or `None` if more than [`MAX_STEPS`]
+    /// (which the plan rules out: see there).
+    #[inline(always)]
+    fn axis_steps(
         &self,
         axis: usize,
-        cell: &[i64; N],
-        offset: &[f64; N],
+        c: i64,
+        t: f64,
+        out: &mut [Step; MAX_STEPS],
+    ) -> Option<usize> {
+        let (Some(&m), Some(&reach), Some(&side), Some(&periodic)) = (
+            self.counts.get(axis),
+            self.reach.get(axis),
+            self.side.get(axis),
+            self.periodic.get(axis),
+        ) else {
+            return Some(0);
+        };
+        // Distance along the axis from `t` to cell `c + d`, less the
+        // rounding margin: a lower bound for any point filed there.
+        let gap = |d: i64| {
+            #[expect(clippy::cast_precision_loss, reason = "cell indices are <= 2^40")]
+            let g = match d {
+                0 => 0.0,
+                d if d > 0 => ((c + d) as f64 - self.eta) * side - t,
+                d => t - ((c + d + 1) as f64 + self.eta) * side,
+            };
+            g.max(0.0)
+        };
+        let mut n = 0;
+        let mut push = |key: i64, gap: f64| {
+            let gap2 = gap * gap;
+            if gap2 >= self.radius_squared {
+                return Some(());
+            }
+            *out.get_mut(n)? = Step { key, gap2 };
+            n += 1;
+            Some(())
+        };
+        if periodic && 2 * reach + 1 >= m {
+            // The reach wraps onto itself: each cell once, at its nearest
+            // image (periodic distances are per-axis minimums).
+            for k in 0..m {
+                let d = k - c;
+                push(k, gap(d).min(gap(d - m)).min(gap(d + m)))?;
+            }
+        } else {
+            // 0, -1, 1, -2, 2, …: the own cell first, for an early exit.
+            for j in 0..=2 * reach {
+                let d = if j % 2 == 1 { -(j + 1) / 2 } else { j / 2 };
+                let k = c + d;
+                if periodic {
+                    push(k.rem_euclid(m), gap(d))?;
+                } else if (0..m).contains(&k) {
+                    push(k, gap(d))?;
+                }
+            }
+        }
+        // Nearest first: a conflict is found sooner (in a small torus every
+        // cell holds close points), and a walk can stop at the first step
+        // too far.
+        out.get_mut(..n)?
+            .sort_unstable_by(|a, b| a.gap2.total_cmp(&b.gap2));
+        Some(n)
+    }
+
+    /// Depth-first over the axes, through each axis's steps nearest first,
+    /// while the bound summed so far (`partial`) stays below `r²`; at the
+    /// last axis, the cell's points.
+    fn walk(
+        &self,
+        axis: usize,
+        steps: &[[Step; MAX_STEPS]; N],
+        lens: &[usize; N],
         key: &mut [i64; N],
         partial: f64,
         p: &[f64; N],
     ) -> Option<[f64; N]> {
-        if axis == N {
+        let (Some(axis_steps), Some(&n)) = (steps.get(axis), lens.get(axis)) else {
             return self.conflict_in(key, p);
-        }
-        let (m, reach, c) = (self.counts[axis], self.reach[axis], cell[axis]);
-        if self.periodic[axis] && 2 * reach + 1 >= m {
-            // The reach wraps onto itself: visit each cell once, no bound.
-            for k in 0..m {
-                key[axis] = k;
-                if let Some(q) = self.visit(axis + 1, cell, offset, key, partial, p) {
-                    return Some(q);
-                }
-            }
-            return None;
-        }
-        let (side, t) = (self.side[axis], offset[axis]);
-        // Offsets 0, -1, 1, -2, 2, …: nearest first, for an early exit.
-        for j in 0..=2 * reach {
-            let d = if j % 2 == 1 { -(j + 1) / 2 } else { j / 2 };
-            #[expect(clippy::cast_precision_loss, reason = "cell indices are <= 2^40")]
-            let gap = match d {
-                0 => 0.0,
-                d if d > 0 => ((c + d) as f64 - self.eta) * side - t,
-                d => t - ((c + d + 1) as f64 + self.eta) * side,
-            }
-            .max(0.0);
-            let bound = partial + gap * gap;
+        };
+        for step in axis_steps.iter().take(n) {
+            let bound = partial + step.gap2;
             if bound >= self.radius_squared {
-                continue;
+                break;
             }
-            let mut k = c + d;
-            if self.periodic[axis] {
-                k = k.rem_euclid(m);
-            } else if k < 0 || k >= m {
-                continue;
+            if let Some(k) = key.get_mut(axis) {
+                *k = step.key;
             }
-            key[axis] = k;
-            if let Some(q) = self.visit(axis + 1, cell, offset, key, bound, p) {
+            if let Some(q) = self.walk(axis + 1, steps, lens, key, bound, p) {
                 return Some(q);
             }
         }
@@ -287,8 +341,23 @@ impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let cell = self.cell_of(p);
         let offset = zip_map(p, &self.lo, |x, lo| x - lo);
+        let mut steps = [[Step::default(); MAX_STEPS]; N];
+        let mut lens = [0usize; N];
+        for (axis, ((out, len), (&c, &t))) in steps
+            .iter_mut()
+            .zip(&mut lens)
+            .zip(cell.iter().zip(&offset))
+            .enumerate()
+        {
+            // More steps than the plan allows cannot happen; were it to,
+            // the candidate is refused: the set stays valid.
+            let Some(n) = self.axis_steps(axis, c, t, out) else {
+                return Some(*p);
+            };
+            *len = n;
+        }
         let mut key = [0i64; N];
-        self.visit(0, &cell, &offset, &mut key, 0.0, p)
+        self.walk(0, &steps, &lens, &mut key, 0.0, p)
     }
 
     fn bytes(&self) -> u64 {
