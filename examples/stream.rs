@@ -16,6 +16,10 @@
 //! Peak RSS (`VmHWM`, Linux) covers the whole run; with `--scheme` and
 //! `--no-batch` a run measures one configuration only.
 
+#[path = "common/mod.rs"]
+mod common;
+
+use crate::common::{peak_rss_mib, status_mib};
 use bridson::{Domain, PoissonDisk, Scheme, Tiled, relative_radius};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -222,18 +226,6 @@ impl Stats {
             power(self.pixel_frequency[1])
         );
     }
-}
-
-fn peak_rss_mib() -> Option<f64> {
-    status_mib("VmHWM:")
-}
-
-/// A memory figure of this process from `/proc/self/status`, in MiB.
-fn status_mib(field: &str) -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with(field))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
 }
 
 fn main() -> ExitCode {

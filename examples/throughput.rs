@@ -15,9 +15,12 @@
 //! median over rounds of each round's ratio (a case's run against the
 //! textbook's run of the same round, minutes apart at most).
 
+#[path = "common/mod.rs"]
+mod common;
 #[path = "../benches/textbook/mod.rs"]
 mod textbook;
 
+use crate::common::peak_rss_mib;
 use bridson::{Candidates, Domain, GridLayout, PoissonDisk, relative_radius, seeded_rng};
 use std::process::{Command, ExitCode};
 use std::time::Instant;
@@ -130,14 +133,6 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
     let seconds = start.elapsed().as_secs_f64();
     let rho = relative_radius::<N>(case.radius, count, 1.0).unwrap_or(f64::NAN);
     Ok((count, seconds, rho))
-}
-
-/// Peak resident set size of this process in MiB, from `/proc/self/status`.
-fn peak_rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
 }
 
 fn child(name: &str) -> ExitCode {
