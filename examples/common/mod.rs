@@ -71,6 +71,26 @@ pub(crate) fn size(text: &str) -> Result<(u32, u32), String> {
         .ok_or_else(|| "expected WxH, two positive whole numbers (e.g. 64x48)".to_owned())
 }
 
+/// `--candidates annulus | sphere`: the candidate distribution, as a clap
+/// value.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum CandidatesArg {
+    /// Bridson's original: uniform in volume over the shell `r..2r`.
+    #[default]
+    Annulus,
+    /// On the sphere of radius `r` (Roberts 2019): packs denser.
+    Sphere,
+}
+
+impl From<CandidatesArg> for bridson::Candidates {
+    fn from(kind: CandidatesArg) -> Self {
+        match kind {
+            CandidatesArg::Annulus => Self::Annulus,
+            CandidatesArg::Sphere => Self::Sphere,
+        }
+    }
+}
+
 /// Peak resident set size of this process in MiB (`VmHWM` in
 /// `/proc/self/status`; Linux only, `None` elsewhere).
 pub(crate) fn peak_rss_mib() -> Option<f64> {
