@@ -2,8 +2,8 @@
 //! than `r` (the guarantee, checked independently of the sampler), and the
 //! share of the domain left uncovered (0 for a maximal set).
 
-use crate::uniform01;
 use bridson::Domain;
+use bridson::rand::RngExt;
 use core::ops::ControlFlow;
 
 /// `Σ_i d_i²` in axis order, with the toroidal difference
@@ -229,7 +229,7 @@ pub(crate) fn uncovered_fraction<const N: usize>(
     let (lo, extent) = (domain.lo(), domain.extent());
     let mut uncovered = 0u64;
     for _ in 0..probes {
-        let q: [f64; N] = core::array::from_fn(|i| lo[i] + uniform01(&mut rng) * extent[i]);
+        let q: [f64; N] = core::array::from_fn(|i| lo[i] + rng.random::<f64>() * extent[i]);
         let covered = grid.visit(&q, radius, |_, d2| {
             if d2 <= r2 {
                 ControlFlow::Break(())
@@ -249,7 +249,7 @@ mod tests {
     fn random<const N: usize>(n: usize, seed: u64) -> Vec<[f64; N]> {
         let mut rng = bridson::seeded_rng(seed);
         (0..n)
-            .map(|_| core::array::from_fn(|_| uniform01(&mut rng)))
+            .map(|_| core::array::from_fn(|_| rng.random::<f64>()))
             .collect()
     }
 
