@@ -35,6 +35,9 @@ mod common;
 mod draw;
 #[path = "plot/font.rs"]
 mod font;
+// The integration tests' naive oracle: the one independent distance check.
+#[path = "../tests/common/mod.rs"]
+mod oracle;
 #[path = "plot/quality.rs"]
 mod quality;
 #[path = "plot/raster.rs"]
