@@ -105,6 +105,25 @@ pub(crate) fn status_mib(field: &str) -> Option<f64> {
     Some(kib / 1024.0)
 }
 
+/// The flags of a command line given as one string, as the example `name`
+/// reads them (for tests).
+#[cfg(test)]
+pub(crate) fn parse_line<P: clap::Parser>(name: &str, line: &str) -> Result<P, clap::Error> {
+    P::try_parse_from(std::iter::once(name).chain(line.split_whitespace()))
+}
+
+/// Asserts that `run` fails with a usage error (exit code 2) on each line:
+/// what the library rejects is a bad argument too.
+#[cfg(test)]
+pub(crate) fn assert_usage_failures(lines: &[&str], run: impl Fn(&str) -> Result<(), Failure>) {
+    for line in lines {
+        assert!(
+            matches!(run(line), Err(Failure::Usage(_))),
+            "{line}: expected a library error"
+        );
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -383,8 +383,7 @@ impl Args {
 /// The configuration of a command line given as one string (for tests).
 #[cfg(test)]
 pub(crate) fn from_line(line: &str) -> Result<Config, clap::Error> {
-    let words = std::iter::once("plot").chain(line.split_whitespace());
-    Args::try_parse_from(words)?.config()
+    common::parse_line::<Args>("plot", line)?.config()
 }
 
 #[cfg(test)]

@@ -470,6 +470,7 @@ fn numbers(values: &[f64]) -> String {
 mod tests {
     use super::*;
     use crate::args::from_line;
+    use crate::common::assert_usage_failures;
     use crate::font;
 
     fn config(line: &str) -> Config {
@@ -486,19 +487,14 @@ mod tests {
 
     #[test]
     fn library_errors_are_usage_errors() {
-        for line in [
+        let lines = [
             "--radius 0 --report r",
             "--radius nan --report r",
             "--extent 1,0 --report r",
             "--attempts 0 --report r",
             "--dim 3 --radius 1e-13 --report r",
-        ] {
-            let c = config(line);
-            assert!(
-                matches!(dispatch(&c), Err(Failure::Usage(_))),
-                "{line}: expected a library error"
-            );
-        }
+        ];
+        assert_usage_failures(&lines, |line| dispatch(&config(line)));
     }
 
     #[test]

@@ -264,6 +264,7 @@ fn summary<const N: usize>(
 mod tests {
     use super::*;
     use crate::args::from_line;
+    use crate::common::assert_usage_failures;
 
     fn config(line: &str) -> Config {
         from_line(line).unwrap_or_else(|e| panic!("{line}: expected a run, got {e}"))
@@ -271,7 +272,7 @@ mod tests {
 
     #[test]
     fn library_errors_are_usage_errors() {
-        for line in [
+        let lines = [
             "--dim 2 --radius 0",
             "--dim 2 --radius nan",
             "--dim 2 --radius 1 --extent 1,0",
@@ -282,13 +283,8 @@ mod tests {
             // Outgrows its budget: the points written are valid, but the
             // run is an error (exit code 2).
             "--dim 3 --radius 1e-9 --max-grid-bytes 100000 --format none",
-        ] {
-            let c = config(line);
-            assert!(
-                matches!(dispatch(&c), Err(Failure::Usage(_))),
-                "{line}: expected a library error"
-            );
-        }
+        ];
+        assert_usage_failures(&lines, |line| dispatch(&config(line)));
     }
 
     #[test]
