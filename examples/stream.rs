@@ -16,65 +16,62 @@
 //! Peak RSS (`VmHWM`, Linux) covers the whole run; with `--scheme` and
 //! `--no-batch` a run measures one configuration only.
 
+#[path = "common/mod.rs"]
+mod common;
+
+use crate::common::{peak_rss_mib, status_mib};
 use bridson::{Domain, PoissonDisk, Scheme, Tiled, relative_radius};
+use clap::{Parser, ValueEnum};
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// The command line.
+#[derive(Debug, Parser)]
+#[command(name = "stream", allow_negative_numbers = true)]
 struct Args {
-    width: u32,
-    height: u32,
+    /// Raster size
+    #[arg(long = "pixels", value_name = "WxH", default_value = "1024x1024",
+          value_parser = common::size)]
+    size: (u32, u32),
+    /// Minimum distance in pixels [default: from --per-pixel]
+    #[arg(long, value_name = "R")]
     radius: Option<f64>,
+    /// About N points per pixel (when neither --radius nor --exact is given)
+    #[arg(long, value_name = "N", default_value_t = 4.0)]
     per_pixel: f64,
+    /// Seed
+    #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
-    schemes: Vec<Scheme>,
-    batch: bool,
-    progress: Option<u32>,
+    /// Streaming scheme(s) to run
+    #[arg(long, value_name = "SCHEME", value_enum, default_value_t = Schemes::Both)]
+    scheme: Schemes,
+    /// Skip the batch sampler's run on the same area
+    #[arg(long)]
+    no_batch: bool,
+    /// Exactly N points in every pixel
+    #[arg(long, value_name = "N")]
     exact: Option<u32>,
+    /// Print progress every ROWS rows (0 counts as 1)
+    #[arg(long, value_name = "ROWS")]
+    progress: Option<u32>,
 }
 
-fn parse() -> Result<Args, String> {
-    let mut a = Args {
-        width: 1024,
-        height: 1024,
-        radius: None,
-        per_pixel: 4.0,
-        seed: 1,
-        schemes: vec![Scheme::Sweep, Scheme::Paper],
-        batch: true,
-        progress: None,
-        exact: None,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        let mut value = || it.next().ok_or(format!("{flag} needs a value"));
-        match flag.as_str() {
-            "--pixels" => {
-                let v = value()?;
-                let (w, h) = v.split_once('x').ok_or("--pixels takes WxH")?;
-                a.width = w.parse().map_err(|_| format!("bad width {w}"))?;
-                a.height = h.parse().map_err(|_| format!("bad height {h}"))?;
-            }
-            "--radius" => a.radius = Some(value()?.parse().map_err(|_| "bad --radius")?),
-            "--per-pixel" => a.per_pixel = value()?.parse().map_err(|_| "bad --per-pixel")?,
-            "--seed" => a.seed = value()?.parse().map_err(|_| "bad --seed")?,
-            "--scheme" => {
-                a.schemes = match value()?.as_str() {
-                    "sweep" => vec![Scheme::Sweep],
-                    "paper" => vec![Scheme::Paper],
-                    "both" => vec![Scheme::Sweep, Scheme::Paper],
-                    other => return Err(format!("unknown scheme {other}")),
-                }
-            }
-            "--no-batch" => a.batch = false,
-            "--exact" => a.exact = Some(value()?.parse().map_err(|_| "bad --exact")?),
-            "--progress" => {
-                let rows: u32 = value()?.parse().map_err(|_| "bad --progress")?;
-                a.progress = Some(rows.max(1));
-            }
-            other => return Err(format!("unknown flag {other}")),
+/// `--scheme`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Schemes {
+    Sweep,
+    Paper,
+    Both,
+}
+
+impl Schemes {
+    fn list(self) -> Vec<Scheme> {
+        match self {
+            Self::Sweep => vec![Scheme::Sweep],
+            Self::Paper => vec![Scheme::Paper],
+            Self::Both => vec![Scheme::Sweep, Scheme::Paper],
         }
     }
-    Ok(a)
 }
 
 /// Per-pixel statistics accumulated over the stream.
@@ -224,31 +221,14 @@ impl Stats {
     }
 }
 
-fn peak_rss_mib() -> Option<f64> {
-    status_mib("VmHWM:")
-}
-
-/// A memory figure of this process from `/proc/self/status`, in MiB.
-fn status_mib(field: &str) -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with(field))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
-}
-
 fn main() -> ExitCode {
-    let args = match parse() {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("stream: {e}");
-            return ExitCode::from(2);
-        }
-    };
-    let pixels = u64::from(args.width) * u64::from(args.height);
-    let area = f64::from(args.width) * f64::from(args.height);
+    let args = Args::parse();
+    let (width, height) = args.size;
+    let pixels = u64::from(width) * u64::from(height);
+    let area = f64::from(width) * f64::from(height);
     let mut stream_rate = None;
-    for &scheme in &args.schemes {
-        let builder = Tiled::builder(args.width, args.height).scheme(scheme);
+    for scheme in args.scheme.list() {
+        let builder = Tiled::builder(width, height).scheme(scheme);
         let builder = match (args.exact, args.radius) {
             (Some(n), _) => builder.exact(n),
             (None, Some(r)) => builder.radius(r),
@@ -261,14 +241,14 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         };
-        let mut stats = Stats::new(args.width);
+        let mut stats = Stats::new(width);
         let mut buf = Vec::new();
         let start = Instant::now();
         let mut stream = tiled.pixels_seeded(args.seed);
         while let Some((x, y)) = stream.next_into(&mut buf) {
             stats.add(x, y, &buf);
-            if let Some(every) = args.progress
-                && x + 1 == args.width
+            if let Some(every) = args.progress.map(|rows| rows.max(1))
+                && x + 1 == width
                 && (y + 1) % every == 0
             {
                 let s = start.elapsed().as_secs_f64();
@@ -303,8 +283,8 @@ fn main() -> ExitCode {
         }
         println!(
             "{scheme:?}: {}x{} pixels, r = {:.5}, {} points in {seconds:.3} s ({:.3} M/s), rho {rho:.4}, window {:.1} MiB",
-            args.width,
-            args.height,
+            width,
+            height,
             tiled.radius(),
             stats.points,
             rate / 1e6,
@@ -315,10 +295,10 @@ fn main() -> ExitCode {
             stream_rate = Some((tiled.radius(), rate));
         }
     }
-    if args.batch
+    if !args.no_batch
         && let Some((radius, rate)) = stream_rate
     {
-        let domain = Domain::from_extent([f64::from(args.width), f64::from(args.height)]);
+        let domain = Domain::from_extent([f64::from(width), f64::from(height)]);
         let sampler = domain.and_then(|d| PoissonDisk::new(d, radius));
         match sampler {
             Ok(s) => {

@@ -15,12 +15,32 @@
 //! median over rounds of each round's ratio (a case's run against the
 //! textbook's run of the same round, minutes apart at most).
 
+#[path = "common/mod.rs"]
+mod common;
 #[path = "../benches/textbook/mod.rs"]
 mod textbook;
 
+use crate::common::peak_rss_mib;
 use bridson::{Candidates, Domain, GridLayout, PoissonDisk, relative_radius, seeded_rng};
+use clap::Parser;
 use std::process::{Command, ExitCode};
 use std::time::Instant;
+
+/// The command line.
+#[derive(Debug, Parser)]
+#[command(name = "throughput")]
+struct Args {
+    /// Runs of each case (the median is reported; 0 counts as 1)
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    runs: usize,
+    /// Run only the cases whose name starts with PREFIX
+    #[arg(long, value_name = "PREFIX", default_value = "")]
+    only: String,
+    /// Run one case in this process and print its figures (used by the
+    /// parent run)
+    #[arg(long, value_name = "CASE", hide = true)]
+    child: Option<String>,
+}
 
 struct Case {
     name: &'static str,
@@ -132,14 +152,6 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
     Ok((count, seconds, rho))
 }
 
-/// Peak resident set size of this process in MiB, from `/proc/self/status`.
-fn peak_rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
-}
-
 fn child(name: &str) -> ExitCode {
     let Some(case) = CASES.iter().find(|c| c.name == name) else {
         eprintln!("throughput: unknown case {name}");
@@ -159,25 +171,11 @@ fn child(name: &str) -> ExitCode {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    if let [flag, name] = args.as_slice()
-        && flag == "--child"
-    {
+    let args = Args::parse();
+    if let Some(name) = &args.child {
         return child(name);
     }
-    let mut runs = 3usize;
-    let mut only = String::new();
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match (a.as_str(), it.next()) {
-            ("--runs", Some(v)) => runs = v.parse().unwrap_or(3).max(1),
-            ("--only", Some(v)) => only.clone_from(v),
-            _ => {
-                eprintln!("usage: throughput [--runs N] [--only PREFIX]");
-                return ExitCode::from(2);
-            }
-        }
-    }
+    let (runs, only) = (args.runs.max(1), args.only);
     let exe = match std::env::current_exe() {
         Ok(e) => e,
         Err(e) => {

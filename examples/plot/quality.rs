@@ -1,28 +1,21 @@
 //! The numbers of the quality report: minimum distance and pairs closer
-//! than `r` (the guarantee, checked independently of the sampler), and the
-//! share of the domain left uncovered (0 for a maximal set).
+//! than `r` (the guarantee, checked independently of the sampler with the
+//! distance of the tests' oracle, `tests/common/mod.rs`, and a grid to stay
+//! fast on large sets), and the share of the domain left uncovered (0 for a
+//! maximal set).
 
-use crate::uniform01;
+use crate::oracle;
 use bridson::Domain;
+use bridson::rand::RngExt;
 use core::ops::ControlFlow;
 
 /// `Σ_i d_i²` in axis order, with the toroidal difference
-/// `min(|Δ|, L − |Δ|)` on periodic axes: the distance of the guarantee.
-pub(crate) fn distance_squared<const N: usize>(
-    domain: &Domain<N>,
-    a: &[f64; N],
-    b: &[f64; N],
-) -> f64 {
-    let (extent, periodic) = (domain.extent(), domain.periodic());
-    let mut sum = 0.0;
-    for i in 0..N {
-        let mut d = (a[i] - b[i]).abs();
-        if periodic[i] {
-            d = d.min(extent[i] - d);
-        }
-        sum += d * d;
-    }
-    sum
+/// `min(|Δ|, L − |Δ|)` on periodic axes: the distance of the guarantee, as
+/// the integration tests' naive oracle (`tests/common/mod.rs`) computes it,
+/// so that the plot and the tests share one checker independent of the
+/// sampler.
+fn distance_squared<const N: usize>(domain: &Domain<N>, a: &[f64; N], b: &[f64; N]) -> f64 {
+    oracle::distance_squared(a, b, &domain.lo(), &domain.hi(), &domain.periodic())
 }
 
 /// Points bucketed by their first two coordinates, for neighbour queries in
@@ -229,7 +222,7 @@ pub(crate) fn uncovered_fraction<const N: usize>(
     let (lo, extent) = (domain.lo(), domain.extent());
     let mut uncovered = 0u64;
     for _ in 0..probes {
-        let q: [f64; N] = core::array::from_fn(|i| lo[i] + uniform01(&mut rng) * extent[i]);
+        let q: [f64; N] = core::array::from_fn(|i| lo[i] + rng.random::<f64>() * extent[i]);
         let covered = grid.visit(&q, radius, |_, d2| {
             if d2 <= r2 {
                 ControlFlow::Break(())
@@ -249,23 +242,23 @@ mod tests {
     fn random<const N: usize>(n: usize, seed: u64) -> Vec<[f64; N]> {
         let mut rng = bridson::seeded_rng(seed);
         (0..n)
-            .map(|_| core::array::from_fn(|_| uniform01(&mut rng)))
+            .map(|_| core::array::from_fn(|_| rng.random::<f64>()))
             .collect()
     }
 
+    /// The oracle's O(n²) answer: its violations, and the closest pair.
     fn brute<const N: usize>(points: &[[f64; N]], domain: &Domain<N>, r: f64) -> PairStats {
-        let mut best = f64::INFINITY;
-        let mut closer = 0;
-        for (i, a) in points.iter().enumerate() {
-            for b in &points[..i] {
-                let d2 = distance_squared(domain, a, b);
-                best = best.min(d2);
-                closer += u64::from(d2 < r * r);
-            }
-        }
+        let (lo, hi, periodic) = (domain.lo(), domain.hi(), domain.periodic());
+        let closer = oracle::min_distance_violations(points, r, lo, hi, periodic).len();
+        let best = points
+            .iter()
+            .enumerate()
+            .flat_map(|(i, a)| points[..i].iter().map(move |b| (a, b)))
+            .map(|(a, b)| distance_squared(domain, a, b))
+            .fold(f64::INFINITY, f64::min);
         PairStats {
             min_distance: best.is_finite().then(|| best.sqrt()),
-            closer_than_radius: closer,
+            closer_than_radius: u64::try_from(closer).expect("a count"),
         }
     }
 

@@ -200,15 +200,15 @@ pub(crate) fn edge_ratios(points: &[[f64; 2]], raster: Raster, band: f64) -> Edg
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::uniform01;
+    use bridson::rand::RngExt;
 
     fn uniform(n: usize, raster: Raster, seed: u64) -> Vec<[f64; 2]> {
         let mut rng = bridson::seeded_rng(seed);
         (0..n)
             .map(|_| {
                 [
-                    uniform01(&mut rng) * f64::from(raster.width),
-                    uniform01(&mut rng) * f64::from(raster.height),
+                    rng.random::<f64>() * f64::from(raster.width),
+                    rng.random::<f64>() * f64::from(raster.height),
                 ]
             })
             .collect()

@@ -209,7 +209,7 @@ pub(crate) fn radial(periodogram: &[f64], max_freq: u32) -> Vec<Ring> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::uniform01;
+    use bridson::rand::RngExt;
 
     /// `P(f)` straight from the definition.
     fn direct(points: &[[f64; 2]], fx: f64, fy: f64) -> f64 {
@@ -270,7 +270,7 @@ mod tests {
     fn matches_the_definition_for_random_points() {
         let mut rng = bridson::seeded_rng(11);
         let points: Vec<[f64; 2]> = (0..37)
-            .map(|_| [uniform01(&mut rng), uniform01(&mut rng)])
+            .map(|_| [rng.random::<f64>(), rng.random::<f64>()])
             .collect();
         let max_freq = 9;
         let p = set_periodogram(&points, max_freq);
@@ -332,7 +332,7 @@ mod tests {
         let mut pg = Periodogram::new(max_freq);
         for _ in 0..sets {
             let points: Vec<[f64; 2]> = (0..n)
-                .map(|_| [uniform01(&mut rng), uniform01(&mut rng)])
+                .map(|_| [rng.random::<f64>(), rng.random::<f64>()])
                 .collect();
             pg.add_set(&points);
         }

@@ -1,0 +1,436 @@
+//! The command line of `points`: clap parses the flags, [`Args::config`]
+//! checks what depends on several of them (list lengths against `--dim`,
+//! axis numbers, the raster mode's rules) and gives a [`Config`].
+
+use crate::common::{self, CandidatesArg};
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser, ValueEnum};
+use std::path::PathBuf;
+
+/// A comma-separated list, one value per flag: clap reads a field typed
+/// `Vec` as a repeated flag, and this name opts out of that.
+type List<T> = Vec<T>;
+
+const ABOUT: &str = "\
+Poisson disk sampling (Bridson) of the box lo <= x < lo + extent: no two
+points closer than R. Points go to stdout (or --out) as they are generated;
+a one-line summary goes to stderr.
+
+With --pixels, a W x H raster is streamed pixel by pixel (bridson::Tiled):
+points in raster coordinates, 0 <= x < W, 0 <= y < H, row 0 first; the
+radius is in pixels (--radius), or follows from the samples wanted per
+pixel (--per-pixel); the JSON output carries the radius actually used.
+--paper uses Ye's per-pixel scheme instead of the default sweep (it shows a
+density bias along pixel edges; for comparison). --dim, if given, must be 2;
+--extent, --lo, --periodic, --periodic-axes, --max-points and
+--max-grid-bytes do not apply.";
+
+const AFTER: &str = "\
+Output formats:
+  csv:  header x0,x1,.. then one point a line
+  json: {\"dim\":..,\"radius\":..,\"lo\":[..],\"hi\":[..],\"points\":[[..],..]}
+  none: write nothing (--out is ignored); the summary time is then pure
+        generation
+
+Flags also accept the form --flag=value. Numbers are printed in the shortest
+form that parses back to the identical f64.
+
+Exit status: 0 success, 1 error writing the output, 2 bad arguments or
+parameters rejected by the sampler.
+
+Examples:
+  points --dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv
+  points --pixels 64x48 --per-pixel 4 --format json --out raster.json";
+
+/// The flags as typed.
+#[derive(Debug, Parser)]
+#[command(
+    name = "points",
+    about = ABOUT,
+    after_help = AFTER,
+    override_usage = "points --dim D --radius R [OPTIONS]\n       \
+                      points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]",
+    allow_negative_numbers = true,
+    group = clap::ArgGroup::new("spacing").args(["radius", "per_pixel", "exact"]),
+)]
+pub(crate) struct Args {
+    /// Dimension, 1 to 8
+    #[arg(long, value_name = "D", required_unless_present = "pixels")]
+    dim: Option<usize>,
+    /// Minimum distance between points
+    #[arg(long, value_name = "R", required_unless_present = "pixels")]
+    radius: Option<f64>,
+    /// Box size, exactly D values [default: all 1]
+    #[arg(long, value_name = "A,B,..", value_parser = common::list::<f64>, allow_hyphen_values = true)]
+    extent: Option<List<f64>>,
+    /// Lower corner, exactly D values [default: all 0]
+    #[arg(long, value_name = "A,B,..", value_parser = common::list::<f64>, allow_hyphen_values = true)]
+    lo: Option<List<f64>>,
+    /// Make every axis periodic (toroidal)
+    #[arg(long)]
+    periodic: bool,
+    /// Make the listed axes (0-based) periodic
+    #[arg(long, value_name = "I,J,..", value_parser = common::list::<usize>)]
+    periodic_axes: Option<List<usize>>,
+    /// Candidate attempts per active point
+    #[arg(long, value_name = "K", default_value_t = bridson::DEFAULT_ATTEMPTS)]
+    attempts: u32,
+    /// How candidates are drawn
+    #[arg(long, value_name = "KIND", value_enum, default_value_t)]
+    candidates: CandidatesArg,
+    /// Seed, an unsigned 64-bit integer
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    seed: u64,
+    /// Stop after N points
+    #[arg(long, value_name = "N")]
+    max_points: Option<u64>,
+    /// Memory budget of the run, in bytes [default: 1 GiB]; a run that
+    /// outgrows it stops with exit code 2
+    #[arg(long, value_name = "B")]
+    max_grid_bytes: Option<u64>,
+    /// What to write (see "Output formats" below)
+    #[arg(long, value_name = "FMT", value_enum, default_value_t = Format::Csv)]
+    format: Format,
+    /// Write to FILE instead of stdout
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Stream a W x H raster pixel by pixel (see above)
+    #[arg(long, value_name = "WxH", value_parser = common::size,
+          conflicts_with_all = ["extent", "lo", "periodic", "periodic_axes", "max_points", "max_grid_bytes"])]
+    pixels: Option<(u32, u32)>,
+    /// With --pixels: about N points per pixel
+    #[arg(long, value_name = "N", requires = "pixels")]
+    per_pixel: Option<f64>,
+    /// With --pixels: Ye's per-pixel scheme
+    #[arg(long, requires = "pixels")]
+    paper: bool,
+    /// With --pixels: exactly N points in every pixel (the JSON radius is
+    /// then the oversampled sweep's, the minimum distance kept)
+    #[arg(long, value_name = "N", requires = "pixels")]
+    exact: Option<u32>,
+}
+
+/// What to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum Format {
+    /// Header x0,x1,.. then one point a line
+    Csv,
+    /// One object with the header values and the points
+    Json,
+    /// Nothing: the summary time is pure generation
+    None,
+}
+
+/// A fully parsed command line. List lengths and axis numbers are already
+/// checked against `dim`; everything else is left to the library.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Config {
+    pub(crate) dim: usize,
+    pub(crate) radius: f64,
+    pub(crate) extent: Option<Vec<f64>>,
+    pub(crate) lo: Option<Vec<f64>>,
+    /// One flag per axis (`dim` of them).
+    pub(crate) periodic: Vec<bool>,
+    pub(crate) attempts: u32,
+    pub(crate) candidates: bridson::Candidates,
+    pub(crate) seed: u64,
+    pub(crate) max_points: Option<u64>,
+    /// `--max-grid-bytes`: the run's memory budget.
+    pub(crate) max_grid_bytes: Option<u64>,
+    pub(crate) format: Format,
+    pub(crate) out: Option<PathBuf>,
+    /// `--pixels`: stream a raster instead of sampling the box.
+    pub(crate) raster: Option<Raster>,
+}
+
+/// The raster mode's settings (`--pixels`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Raster {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    /// `--per-pixel`; `None` means `--radius` gives the spacing.
+    pub(crate) per_pixel: Option<f64>,
+    pub(crate) paper: bool,
+    /// `--exact N`: exactly N points in every pixel.
+    pub(crate) exact: Option<u32>,
+}
+
+/// A usage error in clap's format (exit code 2).
+fn invalid(message: String) -> clap::Error {
+    Args::command().error(ErrorKind::ValueValidation, message)
+}
+
+impl Args {
+    /// The checked configuration, or a usage error.
+    pub(crate) fn config(self) -> Result<Config, clap::Error> {
+        let raster = match self.pixels {
+            Some((width, height)) => {
+                if self.dim.is_some_and(|d| d != 2) {
+                    return Err(invalid(
+                        "--pixels makes a 2-D raster: --dim must be 2 if given".to_owned(),
+                    ));
+                }
+                if self.radius.is_none() && self.per_pixel.is_none() && self.exact.is_none() {
+                    return Err(Args::command().error(
+                        ErrorKind::MissingRequiredArgument,
+                        "--pixels needs --radius, --per-pixel or --exact",
+                    ));
+                }
+                Some(Raster {
+                    width,
+                    height,
+                    per_pixel: self.per_pixel,
+                    paper: self.paper,
+                    exact: self.exact,
+                })
+            }
+            None => None,
+        };
+        let dim = if raster.is_some() {
+            2
+        } else {
+            self.dim.unwrap_or_default()
+        };
+        if !(1..=8).contains(&dim) {
+            return Err(invalid(format!("--dim must be from 1 to 8, got {dim}")));
+        }
+        for (flag, list) in [("--extent", &self.extent), ("--lo", &self.lo)] {
+            if let Some(values) = list
+                && values.len() != dim
+            {
+                return Err(invalid(format!(
+                    "{flag} needs exactly {dim} comma-separated values (one per axis), got {}",
+                    values.len()
+                )));
+            }
+        }
+        let mut periodic = vec![self.periodic; dim];
+        for &axis in self.periodic_axes.iter().flatten() {
+            let Some(p) = periodic.get_mut(axis) else {
+                return Err(invalid(format!(
+                    "--periodic-axes: axis {axis} does not exist with --dim {dim} (axes are 0 to {})",
+                    dim - 1
+                )));
+            };
+            *p = true;
+        }
+        Ok(Config {
+            dim,
+            radius: self.radius.unwrap_or(f64::NAN),
+            extent: self.extent,
+            lo: self.lo,
+            periodic,
+            attempts: self.attempts,
+            candidates: self.candidates.into(),
+            seed: self.seed,
+            max_points: self.max_points,
+            max_grid_bytes: self.max_grid_bytes,
+            format: self.format,
+            out: self.out,
+            raster,
+        })
+    }
+}
+
+/// The configuration of a command line given as one string (for tests).
+#[cfg(test)]
+pub(crate) fn from_line(line: &str) -> Result<Config, clap::Error> {
+    common::parse_line::<Args>("points", line)?.config()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bridson::Candidates;
+
+    fn parse(line: &str) -> Result<Config, clap::Error> {
+        from_line(line)
+    }
+
+    fn config(line: &str) -> Config {
+        parse(line).unwrap_or_else(|e| panic!("{line}: expected a run, got {e}"))
+    }
+
+    fn error(line: &str) -> clap::Error {
+        match parse(line) {
+            Err(e) => e,
+            Ok(c) => panic!("{line}: expected an error, got {c:?}"),
+        }
+    }
+
+    #[test]
+    fn parses_the_documented_example() {
+        let c = config("--dim 2 --radius 0.01 --extent 1,1 --seed 7 --out pts.csv");
+        let expected = Config {
+            dim: 2,
+            radius: 0.01,
+            extent: Some(vec![1.0, 1.0]),
+            lo: None,
+            periodic: vec![false, false],
+            attempts: 30,
+            candidates: Candidates::Annulus,
+            seed: 7,
+            max_points: None,
+            max_grid_bytes: None,
+            format: Format::Csv,
+            out: Some(PathBuf::from("pts.csv")),
+            raster: None,
+        };
+        assert_eq!(c, expected, "example command");
+    }
+
+    #[test]
+    fn parses_the_raster_flags() {
+        let c = config("--pixels 64x48 --per-pixel 4 --paper --seed 3");
+        assert_eq!(
+            c.raster,
+            Some(Raster {
+                width: 64,
+                height: 48,
+                per_pixel: Some(4.0),
+                paper: true,
+                exact: None,
+            }),
+            "raster settings"
+        );
+        assert_eq!((c.dim, c.seed), (2, 3), "dim and seed");
+        let r = config("--pixels=5x7 --radius 0.8 --dim 2");
+        assert_eq!(r.radius, 0.8, "radius");
+        assert_eq!(
+            r.raster.map(|x| x.per_pixel),
+            Some(None),
+            "spacing from --radius"
+        );
+        for bad in [
+            "--pixels 5x7",
+            "--pixels 5x7 --radius 1 --per-pixel 2",
+            "--pixels 5x7 --radius 1 --dim 3",
+            "--pixels 5x7 --radius 1 --extent 1,1",
+            "--pixels 5x7 --radius 1 --periodic",
+            "--pixels 5x7 --radius 1 --max-points 3",
+            "--pixels 5by7 --radius 1",
+            "--pixels -5x7 --radius 1",
+            "--dim 2 --radius 1 --per-pixel 4",
+            "--dim 2 --radius 1 --paper",
+            "--dim 2 --radius 1 --exact 4",
+            "--pixels 5x7 --exact 4 --per-pixel 4",
+            "--pixels 5x7 --exact -1",
+        ] {
+            let e = error(bad);
+            assert_eq!(e.exit_code(), 2, "{bad}: exit code");
+        }
+    }
+
+    #[test]
+    fn parses_every_flag_in_both_forms() {
+        let c = config(
+            "--dim=3 --radius=0.5 --extent 2,3,4 --lo=-1,-2,-3 --periodic-axes 0,2 \
+             --attempts 12 --candidates=sphere --seed 18446744073709551615 \
+             --max-points 100 --format json --out=x.json",
+        );
+        assert_eq!(c.dim, 3, "dim");
+        assert_eq!(c.radius, 0.5, "radius");
+        assert_eq!(c.extent, Some(vec![2.0, 3.0, 4.0]), "extent");
+        assert_eq!(c.lo, Some(vec![-1.0, -2.0, -3.0]), "lo");
+        assert_eq!(c.periodic, vec![true, false, true], "periodic axes");
+        assert_eq!(c.attempts, 12, "attempts");
+        assert_eq!(c.candidates, Candidates::Sphere, "candidates");
+        assert_eq!(c.seed, u64::MAX, "seed");
+        assert_eq!(c.max_points, Some(100), "cap");
+        assert_eq!(c.format, Format::Json, "format");
+        assert_eq!(c.out, Some(PathBuf::from("x.json")), "out");
+        let all = config("--periodic --dim 4 --radius 1");
+        assert_eq!(
+            all.periodic,
+            vec![true; 4],
+            "--periodic makes every axis periodic"
+        );
+        assert_eq!(
+            config("--dim 1 --radius 1 --format none").format,
+            Format::None,
+            "none"
+        );
+        let negative = config("--dim 2 --radius 1 --lo -1,-2");
+        assert_eq!(negative.lo, Some(vec![-1.0, -2.0]), "negative list");
+    }
+
+    #[test]
+    fn help_stops_parsing() {
+        for line in ["--help", "--dim 2 -h", "--dim 99 --help"] {
+            let e = error(line);
+            assert_eq!(e.kind(), ErrorKind::DisplayHelp, "{line}");
+            assert_eq!(e.exit_code(), 0, "{line}: help exits 0");
+        }
+    }
+
+    #[test]
+    fn rejects_bad_command_lines() {
+        let cases = [
+            ("--radius 0.1", "--dim"),
+            ("--dim 2", "--radius"),
+            ("--dim 0 --radius 1", "--dim must be from 1 to 8, got 0"),
+            ("--dim 9 --radius 1", "--dim must be from 1 to 8, got 9"),
+            ("--dim -1 --radius 1", "invalid value '-1' for '--dim <D>'"),
+            ("--dim 2 --radius", "'--radius <R>'"),
+            (
+                "--dim 2 --radius abc",
+                "invalid value 'abc' for '--radius <R>'",
+            ),
+            (
+                "--dim 2 --radius 1 --extent 1,2,3",
+                "--extent needs exactly 2",
+            ),
+            ("--dim 2 --radius 1 --lo 1", "--lo needs exactly 2"),
+            ("--dim 2 --radius 1 --extent 1,", "invalid item '' in '1,'"),
+            (
+                "--dim 2 --radius 1 --extent 1,x",
+                "invalid item 'x' in '1,x'",
+            ),
+            (
+                "--dim 2 --radius 1 --format xml",
+                "[possible values: csv, json, none]",
+            ),
+            (
+                "--dim 2 --radius 1 --candidates disk",
+                "[possible values: annulus, sphere]",
+            ),
+            (
+                "--dim 2 --radius 1 --attempts -3",
+                "invalid value '-3' for '--attempts <K>'",
+            ),
+            (
+                "--dim 2 --radius 1 --attempts 4294967296",
+                "'--attempts <K>'",
+            ),
+            (
+                "--dim 2 --radius 1 --seed 1.5",
+                "invalid value '1.5' for '--seed <S>'",
+            ),
+            ("--dim 2 --radius 1 --max-points -1", "'--max-points <N>'"),
+            (
+                "--dim 2 --radius 1 --periodic-axes 2",
+                "axis 2 does not exist",
+            ),
+            ("--dim 2 --radius 1 --periodic=yes", "'--periodic'"),
+            (
+                "--dim 2 --radius 1 --radius 2",
+                "'--radius <R>' cannot be used multiple times",
+            ),
+            (
+                "--dim 2 --radius 1 --bogus",
+                "unexpected argument '--bogus'",
+            ),
+            ("--dim 2 --radius 1 stray", "unexpected argument 'stray'"),
+            ("--dim 2 --radius 1 --out=", "'--out <FILE>'"),
+        ];
+        for (line, expected) in cases {
+            let e = error(line);
+            let text = e.to_string();
+            assert_eq!(e.exit_code(), 2, "{line}: exit code");
+            assert!(
+                text.contains(expected),
+                "{line}: got '{text}', expected '{expected}'"
+            );
+        }
+    }
+}

@@ -1,0 +1,375 @@
+//! Sampling and output of `points`: builds the sampler a [`Config`]
+//! describes, streams its points as CSV or JSON as they come, and prints the
+//! one-line summary.
+
+use crate::args::{Config, Format, Raster};
+use crate::common::{Failure, report};
+use bridson::{DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, PoissonDisk, Scheme, Tiled};
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::time::{Duration, Instant};
+
+pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
+    if let Some(raster) = config.raster {
+        return run_raster(config, raster);
+    }
+    match config.dim {
+        1 => run::<1>(config),
+        2 => run::<2>(config),
+        3 => run::<3>(config),
+        4 => run::<4>(config),
+        5 => run::<5>(config),
+        6 => run::<6>(config),
+        7 => run::<7>(config),
+        8 => run::<8>(config),
+        d => Err(Failure::Usage(format!(
+            "--dim must be from 1 to 8, got {d}"
+        ))),
+    }
+}
+
+/// Builds the sampler from `config`, streams its points out and prints the
+/// summary.
+fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
+    let sampler = build::<N>(config).map_err(Failure::Usage)?;
+    let (count, elapsed, layout, stopped) = match (config.format, &config.out) {
+        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, config.seed),
+        (format, Some(path)) => {
+            let file = File::create(path)
+                .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
+            write_points(BufWriter::new(file), format, &sampler, config.seed)
+        }
+        (format, None) => write_points(
+            BufWriter::new(io::stdout().lock()),
+            format,
+            &sampler,
+            config.seed,
+        ),
+    }
+    .map_err(|e| {
+        let target = config
+            .out
+            .as_ref()
+            .map_or_else(|| "stdout".to_owned(), |p| format!("'{}'", p.display()));
+        Failure::Io(format!("writing to {target}: {e}"))
+    })?;
+    report(&summary(&sampler, count, elapsed, layout));
+    // The points written are valid, but the set is incomplete: say why.
+    stopped.map_or(Ok(()), |e| Err(Failure::Usage(e.to_string())))
+}
+
+/// The sampler `config` describes, or the library's reason why not.
+fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
+    let extent = match &config.extent {
+        Some(v) => array::<N, f64>(v, "--extent")?,
+        None => [1.0; N],
+    };
+    let lo = match &config.lo {
+        Some(v) => array::<N, f64>(v, "--lo")?,
+        None => [0.0; N],
+    };
+    let hi: [f64; N] = core::array::from_fn(|i| lo[i] + extent[i]);
+    let periodic = array::<N, bool>(&config.periodic, "--periodic")?;
+    let domain = Domain::new(lo, hi)
+        .map_err(|e| {
+            // The library sees only lo and hi; name what the user typed when
+            // `lo + extent` itself went wrong.
+            let axis = match e {
+                Error::EmptyBox { axis } | Error::NonFiniteBound { axis } => axis,
+                _ => return e.to_string(),
+            };
+            match (lo.get(axis), extent.get(axis), hi.get(axis)) {
+                (Some(&l), Some(&x), Some(&h))
+                    if l.is_finite() && x.is_finite() && x > 0.0 && !(l < h && h.is_finite()) =>
+                {
+                    format!(
+                        "on axis {axis}, lo {l:e} + extent {x:e} gives {h:e}: the extent is lost \
+                         to rounding or overflows"
+                    )
+                }
+                _ => e.to_string(),
+            }
+        })?
+        .with_periodic(periodic);
+    PoissonDisk::<N>::builder(domain, config.radius)
+        .attempts(config.attempts)
+        .max_points(config.max_points)
+        .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
+        .candidates(config.candidates)
+        .build()
+        .map_err(|e| e.to_string())
+}
+
+fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], String> {
+    <[T; N]>::try_from(values)
+        .map_err(|_| format!("{flag} needs exactly {N} values, got {}", values.len()))
+}
+
+/// Streams the points of `seed` to `out` in `format`, flushing at the end.
+/// Returns the count, the time from building the grid to the flush, the
+/// layout built, and why the run stopped early if it did (the budget).
+fn write_points<const N: usize, W: Write>(
+    out: W,
+    format: Format,
+    sampler: &PoissonDisk<N>,
+    seed: u64,
+) -> io::Result<(u64, Duration, GridLayout, Option<Error>)> {
+    let start = Instant::now();
+    let mut points = sampler.iter_seeded(seed);
+    let layout = points.layout();
+    let domain = sampler.domain();
+    let header = (sampler.radius(), domain.lo(), domain.hi());
+    let count = write_stream(out, format, header, points.by_ref())?;
+    Ok((count, start.elapsed(), layout, points.error()))
+}
+
+/// Writes `points` as they come in `format`, with the JSON header values
+/// `(radius, lo, hi)`; returns the count.
+fn write_stream<const N: usize, W: Write>(
+    mut out: W,
+    format: Format,
+    (radius, lo, hi): (f64, [f64; N], [f64; N]),
+    points: impl Iterator<Item = [f64; N]>,
+) -> io::Result<u64> {
+    let mut count: u64 = 0;
+    match format {
+        Format::None => {
+            for _ in points {
+                count += 1;
+            }
+        }
+        Format::Csv => {
+            for i in 0..N {
+                if i > 0 {
+                    out.write_all(b",")?;
+                }
+                write!(out, "x{i}")?;
+            }
+            out.write_all(b"\n")?;
+            for p in points {
+                write_values(&mut out, &p)?;
+                out.write_all(b"\n")?;
+                count += 1;
+            }
+        }
+        Format::Json => {
+            write!(out, "{{\"dim\":{N},\"radius\":{radius},\"lo\":[")?;
+            write_values(&mut out, &lo)?;
+            out.write_all(b"],\"hi\":[")?;
+            write_values(&mut out, &hi)?;
+            out.write_all(b"],\"points\":[")?;
+            for p in points {
+                out.write_all(if count == 0 { b"[" } else { b",[" })?;
+                write_values(&mut out, &p)?;
+                out.write_all(b"]")?;
+                count += 1;
+            }
+            out.write_all(b"]}\n")?;
+        }
+    }
+    out.flush()?;
+    Ok(count)
+}
+
+/// `--pixels`: streams the raster pixel by pixel, row 0 first.
+fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
+    let builder = Tiled::builder(raster.width, raster.height)
+        .attempts(config.attempts)
+        .candidates(config.candidates)
+        .scheme(if raster.paper {
+            Scheme::Paper
+        } else {
+            Scheme::Sweep
+        });
+    let builder = match (raster.exact, raster.per_pixel) {
+        (Some(n), _) => builder.exact(n),
+        (None, Some(n)) => builder.per_pixel(n),
+        (None, None) => builder.radius(config.radius),
+    };
+    let tiled = builder.build().map_err(|e| Failure::Usage(e.to_string()))?;
+    let (w, h) = (f64::from(raster.width), f64::from(raster.height));
+    let header = (tiled.radius(), [0.0, 0.0], [w, h]);
+    let start = Instant::now();
+    let points = tiled
+        .pixels_seeded(config.seed)
+        .flat_map(|pixel| pixel.points);
+    let written = match (config.format, &config.out) {
+        (Format::None, _) => write_stream(io::sink(), Format::None, header, points),
+        (format, Some(path)) => {
+            let file = File::create(path)
+                .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
+            write_stream(BufWriter::new(file), format, header, points)
+        }
+        (format, None) => write_stream(BufWriter::new(io::stdout().lock()), format, header, points),
+    };
+    let count = written.map_err(|e| Failure::Io(format!("writing the points: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let rho = usize::try_from(count)
+        .ok()
+        .and_then(|n| bridson::relative_radius::<2>(tiled.radius(), n, w * h))
+        .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
+    #[expect(clippy::cast_precision_loss, reason = "a rate, for display only")]
+    let rate = count as f64 / seconds / 1e6;
+    report(&format!(
+        "points: {count} in {seconds:.3} s ({rate:.2} M/s), rho {rho}, {}x{} pixels, r = {}, {:?} scheme",
+        raster.width,
+        raster.height,
+        tiled.radius(),
+        tiled.scheme()
+    ));
+    Ok(())
+}
+
+/// Comma-separated values with `{}` (shortest round-trip form, never an
+/// exponent; every value here is finite, so also valid JSON).
+fn write_values<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
+    for (i, x) in values.iter().enumerate() {
+        if i > 0 {
+            out.write_all(b",")?;
+        }
+        write!(out, "{x}")?;
+    }
+    Ok(())
+}
+
+/// `points: 1234567 in 0.812 s (1.52 M/s), rho 0.7312, grid Dense`.
+fn summary<const N: usize>(
+    sampler: &PoissonDisk<N>,
+    count: u64,
+    elapsed: Duration,
+    layout: GridLayout,
+) -> String {
+    let seconds = elapsed.as_secs_f64();
+    #[expect(clippy::cast_precision_loss, reason = "a rate, for display only")]
+    let per_second = count as f64 / seconds;
+    let rate = if seconds > 0.0 && per_second.is_finite() {
+        if per_second >= 1e6 {
+            format!("{:.2} M/s", per_second / 1e6)
+        } else if per_second >= 1e3 {
+            format!("{:.2} k/s", per_second / 1e3)
+        } else {
+            format!("{per_second:.0} /s")
+        }
+    } else {
+        "n/a".to_owned()
+    };
+    let rho = usize::try_from(count)
+        .ok()
+        .and_then(|n| bridson::relative_radius::<N>(sampler.radius(), n, sampler.domain().volume()))
+        .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
+    format!("points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::args::from_line;
+    use crate::common::assert_usage_failures;
+
+    fn config(line: &str) -> Config {
+        from_line(line).unwrap_or_else(|e| panic!("{line}: expected a run, got {e}"))
+    }
+
+    #[test]
+    fn library_errors_are_usage_errors() {
+        let lines = [
+            "--dim 2 --radius 0",
+            "--dim 2 --radius nan",
+            "--dim 2 --radius 1 --extent 1,0",
+            "--dim 2 --radius 1 --extent 1,inf",
+            "--dim 2 --radius 1 --attempts 0",
+            "--dim 3 --radius 1e-13",
+            "--dim 2 --radius 1 --attempts 65537",
+            // Outgrows its budget: the points written are valid, but the
+            // run is an error (exit code 2).
+            "--dim 3 --radius 1e-9 --max-grid-bytes 100000 --format none",
+        ];
+        assert_usage_failures(&lines, |line| dispatch(&config(line)));
+    }
+
+    #[test]
+    fn a_lost_extent_is_explained() {
+        let e = build::<2>(&config("--dim 2 --radius 1 --lo 1e20,0")).unwrap_err();
+        assert!(e.contains("lo 1e20 + extent 1e0 gives 1e20"), "{e}");
+        let e = build::<1>(&config("--dim 1 --radius 1 --lo 1e308 --extent 1e308")).unwrap_err();
+        assert!(e.contains("gives inf"), "{e}");
+        let e = build::<1>(&config("--dim 1 --radius 1 --extent -1")).unwrap_err();
+        assert!(e.contains("lo must be < hi"), "plain library message: {e}");
+    }
+
+    #[test]
+    fn display_round_trips_bit_for_bit() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1.0 / 3.0,
+            2.0f64.sqrt(),
+            1e-150,
+            1e150,
+            1e300,
+            123_456_789.123_456_79,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            -f64::MAX,
+            f64::EPSILON,
+        ];
+        for x in values {
+            let text = format!("{x}");
+            assert!(
+                !text.contains(['e', 'E', 'N', 'i']),
+                "no exponent or special form: {text}"
+            );
+            let back: f64 = text.parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits(), "{x:?} printed as {text}");
+        }
+        assert_eq!(format!("{}", 1.0f64), "1", "integers print without a point");
+    }
+
+    fn output<const N: usize>(line: &str) -> String {
+        let c = config(line);
+        let sampler = build::<N>(&c).unwrap();
+        let mut bytes = Vec::new();
+        write_points(&mut bytes, c.format, &sampler, c.seed).unwrap();
+        String::from_utf8(bytes).unwrap()
+    }
+
+    #[test]
+    fn csv_has_a_header_and_the_seeded_points() {
+        let text = output::<2>("--dim 2 --radius 0.2 --lo -1,5 --seed 3");
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("x0,x1"), "header");
+        let c = config("--dim 2 --radius 0.2 --lo -1,5 --seed 3");
+        let expected = build::<2>(&c).unwrap().generate_seeded(3).unwrap();
+        let got: Vec<[f64; 2]> = lines
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1]]
+            })
+            .collect();
+        assert!(!got.is_empty(), "some points");
+        assert_eq!(got, expected, "CSV round-trips to the generated points");
+    }
+
+    #[test]
+    fn json_has_the_documented_shape() {
+        let text = output::<2>("--dim 2 --radius 0.5 --extent 2,1 --lo 0,-1 --format json");
+        assert!(
+            text.starts_with(r#"{"dim":2,"radius":0.5,"lo":[0,-1],"hi":[2,0],"points":[["#),
+            "prefix: {text}"
+        );
+        assert!(text.ends_with("]]}\n"), "suffix: {text}");
+        let empty = output::<1>("--dim 1 --radius 0.5 --max-points 0 --format json");
+        assert_eq!(
+            empty, "{\"dim\":1,\"radius\":0.5,\"lo\":[0],\"hi\":[1],\"points\":[]}\n",
+            "no points"
+        );
+        assert_eq!(
+            output::<3>("--dim 3 --radius 0.5 --format none"),
+            "",
+            "none"
+        );
+    }
+}
