@@ -30,9 +30,13 @@ const REDISTRIBUTION_WINDOW: usize = 64;
 /// The cells per side of the grid that finds image-space neighbours.
 const GRID: usize = 64;
 
-/// How many cells around a point's own the neighbour search reaches: two
-/// cells are about two mean spacings of 4096 points.
+/// How many cells around a point's own the best-candidate search reaches:
+/// two cells are about two mean spacings of 4096 points.
 const REACH: isize = 2;
+
+/// The reach of the redistribution's neighbour search: one cell, the 3 × 3
+/// block, about 9 image neighbours, of which about half are placed before.
+const NEIGHBOUR_REACH: isize = 1;
 
 /// The largest value below 1.
 const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
@@ -123,12 +127,12 @@ impl Grid {
     }
 
     /// Calls `f` with the number of every point in the cells within
-    /// [`REACH`] of `p`'s cell, wrapping around.
-    fn near(&self, p: [f64; 2], mut f: impl FnMut(usize)) {
+    /// `reach` of `p`'s cell, wrapping around.
+    fn near(&self, p: [f64; 2], reach: isize, mut f: impl FnMut(usize)) {
         let n = GRID.cast_signed();
         let (cx, cy) = (cell(p[0]).cast_signed(), cell(p[1]).cast_signed());
-        for dy in -REACH..=REACH {
-            for dx in -REACH..=REACH {
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
                 let x = (cx + dx).rem_euclid(n).cast_unsigned();
                 let y = (cy + dy).rem_euclid(n).cast_unsigned();
                 for &k in &self.cells[y * GRID + x] {
@@ -151,7 +155,7 @@ fn best_candidate(stream: &mut Stream, grid: &mut Grid) -> Vec<[f64; 2]> {
         for _ in 0..(i + 1).min(MAX_CANDIDATES) {
             let candidate = [stream.next(), stream.next()];
             let mut nearest = f64::INFINITY;
-            grid.near(candidate, |k| {
+            grid.near(candidate, REACH, |k| {
                 nearest = nearest.min(wrapped_squared(candidate, points[k]));
             });
             if nearest > best_distance {
@@ -186,7 +190,7 @@ fn redistribute<T: Copy>(
         let mut best_distance = -1.0;
         for candidate in current..end {
             let mut nearest = f64::INFINITY;
-            grid.near(at, |k| {
+            grid.near(at, NEIGHBOUR_REACH, |k| {
                 if k < current {
                     nearest = nearest.min(distance(values[k], values[candidate]));
                 }
