@@ -12,6 +12,10 @@
     reason = "each example compiles this module and uses only part of it"
 )]
 
+/// The samplers renderers use today, behind [`bridson::PixelSampler`], to
+/// compare with the crate's Poisson samplers.
+pub(crate) mod samplers;
+
 use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
