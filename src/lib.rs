@@ -161,7 +161,10 @@ pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
-pub use crate::render::{CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler, PoissonPixelSampler};
+pub use crate::render::{
+    CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler,
+    PoissonPixelSampler,
+};
 pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
 };

@@ -1,13 +1,16 @@
 //! Camera samples for renderers: the [`PixelSampler`] trait, shaped like
-//! pbrt-v4's `Sampler`, and its Poisson disk implementation
-//! [`PoissonPixelSampler`].
+//! pbrt-v4's `Sampler`, its Poisson disk implementation
+//! [`PoissonPixelSampler`], and [`CameraPixels`], the paper's streaming
+//! form, whose film points come from a [`Tiled`](crate::Tiled) stream.
 
 mod bank;
 mod eliminate;
 mod hash;
 mod pixel;
+mod stream;
 
 pub use pixel::{MAX_SAMPLES_PER_PIXEL, PoissonPixelSampler};
+pub use stream::{CameraPixel, CameraPixels};
 
 use crate::Error;
 
