@@ -10,11 +10,14 @@
 //! output fails (for example a broken pipe), 2 for bad arguments or
 //! parameters the sampler rejects.
 //!
-//! The parts live in `examples/points/`: `args.rs` (the command line) and
-//! `output.rs` (sampling, CSV and JSON, the summary).
+//! The parts live in `examples/points/`: `args.rs` (the command line),
+//! `output.rs` (sampling, CSV and JSON, the summary) and `camera.rs`
+//! (`--camera`: a renderer's camera samples).
 
 #[path = "points/args.rs"]
 mod args;
+#[path = "points/camera.rs"]
+mod camera;
 #[path = "common/mod.rs"]
 mod common;
 #[path = "points/output.rs"]

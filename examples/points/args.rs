@@ -49,7 +49,8 @@ Examples:
     about = ABOUT,
     after_help = AFTER,
     override_usage = "points --dim D --radius R [OPTIONS]\n       \
-                      points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]",
+                      points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]\n       \
+                      points --pixels WxH --camera --spp N [--dims D] [--stream] [OPTIONS]",
     allow_negative_numbers = true,
     group = clap::ArgGroup::new("spacing").args(["radius", "per_pixel", "exact"]),
 )]
@@ -108,6 +109,23 @@ pub(crate) struct Args {
     /// then the oversampled sweep's, the minimum distance kept)
     #[arg(long, value_name = "N", requires = "pixels")]
     exact: Option<u32>,
+    /// With --pixels: write camera samples (CSV: px,py,index,film_x,film_y,
+    /// lens_u,lens_v,time,d5,..), exactly --spp in every pixel; film in
+    /// raster coordinates, the rest in [0, 1)
+    #[arg(long, requires_all = ["pixels", "spp"],
+          conflicts_with_all = ["per_pixel", "paper", "exact", "radius"])]
+    camera: bool,
+    /// With --camera: samples per pixel
+    #[arg(long, value_name = "N", requires = "camera")]
+    spp: Option<u32>,
+    /// With --camera: values per sample after px,py,index (at least 5: film
+    /// 2, lens 2, time 1; the rest are further dimensions)
+    #[arg(long, value_name = "D", default_value_t = 5, requires = "camera")]
+    dims: u32,
+    /// With --camera: film points from the streaming sampler (exact scheme,
+    /// across pixel borders) instead of the random-access pixel sampler
+    #[arg(long, requires = "camera")]
+    stream: bool,
 }
 
 /// What to write.
@@ -153,6 +171,19 @@ pub(crate) struct Raster {
     pub(crate) paper: bool,
     /// `--exact N`: exactly N points in every pixel.
     pub(crate) exact: Option<u32>,
+    /// `--camera`: camera samples instead of points.
+    pub(crate) camera: Option<Camera>,
+}
+
+/// The camera-sample mode's settings (`--camera`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Camera {
+    /// `--spp`: samples in every pixel.
+    pub(crate) spp: u32,
+    /// `--dims`: values per sample after `px,py,index`, at least 5.
+    pub(crate) dims: u32,
+    /// `--stream`: film points from `CameraPixels` (exact scheme).
+    pub(crate) stream: bool,
 }
 
 /// A usage error in clap's format (exit code 2).
@@ -170,7 +201,28 @@ impl Args {
                         "--pixels makes a 2-D raster: --dim must be 2 if given".to_owned(),
                     ));
                 }
-                if self.radius.is_none() && self.per_pixel.is_none() && self.exact.is_none() {
+                let camera = match self.spp.filter(|_| self.camera) {
+                    Some(spp) if self.dims >= 5 => Some(Camera {
+                        spp,
+                        dims: self.dims,
+                        stream: self.stream,
+                    }),
+                    Some(_) => {
+                        return Err(invalid(format!(
+                            "--dims counts film, lens and time, so it is at least 5, got {}",
+                            self.dims
+                        )));
+                    }
+                    None => None,
+                };
+                if camera.is_some() && self.format == Format::Json {
+                    return Err(invalid("--camera writes CSV (or none)".to_owned()));
+                }
+                if camera.is_none()
+                    && self.radius.is_none()
+                    && self.per_pixel.is_none()
+                    && self.exact.is_none()
+                {
                     return Err(Args::command().error(
                         ErrorKind::MissingRequiredArgument,
                         "--pixels needs --radius, --per-pixel or --exact",
@@ -182,6 +234,7 @@ impl Args {
                     per_pixel: self.per_pixel,
                     paper: self.paper,
                     exact: self.exact,
+                    camera,
                 })
             }
             None => None,
@@ -290,8 +343,19 @@ mod tests {
                 per_pixel: Some(4.0),
                 paper: true,
                 exact: None,
+                camera: None,
             }),
             "raster settings"
+        );
+        let camera = config("--pixels 4x3 --camera --spp 16 --dims 7 --stream --seed 2");
+        assert_eq!(
+            camera.raster.and_then(|r| r.camera),
+            Some(Camera {
+                spp: 16,
+                dims: 7,
+                stream: true
+            }),
+            "camera settings"
         );
         assert_eq!((c.dim, c.seed), (2, 3), "dim and seed");
         let r = config("--pixels=5x7 --radius 0.8 --dim 2");

@@ -173,6 +173,9 @@ fn write_stream<const N: usize, W: Write>(
 
 /// `--pixels`: streams the raster pixel by pixel, row 0 first.
 fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
+    if let Some(camera) = raster.camera {
+        return crate::camera::run(config, raster, camera);
+    }
     let builder = Tiled::builder(raster.width, raster.height)
         .attempts(config.attempts)
         .candidates(config.candidates)
