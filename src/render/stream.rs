@@ -34,7 +34,7 @@ pub struct CameraPixel {
 /// [`PoissonPixelSampler`] sets with exactly as many points as the pixel
 /// has film points, so no sample of the pixel is dropped and every
 /// dimension of it is a Poisson set (the paper's point: with independent
-/// sets of different sizes, samples go missing). Under [`Tiled::exact`]
+/// sets of different sizes, samples go missing). Under [`TiledBuilder::exact`](crate::TiledBuilder::exact)
 /// every pixel has exactly `n` samples; under the natural sweep the count
 /// varies from pixel to pixel, and each [`CameraPixel`] says how many it
 /// has.
