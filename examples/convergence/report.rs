@@ -83,15 +83,21 @@ pub(crate) fn json(series: &[Series], trials: u32) -> serde_json::Value {
     serde_json::json!({ "results": results })
 }
 
-/// Writes the JSON document to `path`.
+/// Writes the JSON document to `path`, one result a line (small, and
+/// readable in a diff).
 ///
 /// # Errors
 /// [`Failure::Io`] if writing fails.
 pub(crate) fn write_json(path: &Path, series: &[Series], trials: u32) -> Result<(), Failure> {
-    let text = serde_json::to_string_pretty(&json(series, trials))
-        .map_err(|e| Failure::Io(format!("encoding JSON: {e}")))?;
-    std::fs::write(path, text + "\n")
-        .map_err(|e| Failure::Io(format!("writing {}: {e}", path.display())))
+    let doc = json(series, trials);
+    let lines: Vec<String> = doc["results"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|r| format!("  {r}"))
+        .collect();
+    let text = format!("{{\"results\": [\n{}\n]}}\n", lines.join(",\n"));
+    std::fs::write(path, text).map_err(|e| Failure::Io(format!("writing {}: {e}", path.display())))
 }
 
 /// The chart of one integrand: every sampler's curve, labelled with its
@@ -185,5 +191,18 @@ mod tests {
         let c = chart(&series, Kind::Disk, 20);
         assert_eq!(c.curves[1].label, "sobol-owen -1.50", "slope in the legend");
         assert!(c.texts().iter().all(|t| font::covers(t)), "{:?}", c.texts());
+    }
+
+    #[test]
+    fn the_json_file_parses_back() {
+        let series = two_series();
+        let path =
+            std::env::temp_dir().join(format!("convergence-test-{}.json", std::process::id()));
+        write_json(&path, &series, 20).expect("writes");
+        let text = std::fs::read_to_string(&path).expect("reads");
+        let _ = std::fs::remove_file(&path);
+        let doc: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+        assert_eq!(doc, json(&series, 20), "the same document");
+        assert_eq!(text.lines().count(), 130, "one result a line, plus two");
     }
 }
