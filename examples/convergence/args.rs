@@ -23,7 +23,7 @@ at N = 4, 16, 64 and the slope of log MSE against log N fitted over N >= 16.";
 const AFTER: &str = "\
 Samplers: poisson-pixel, independent, stratified, best-candidate,
 low-discrepancy, sobol-owen (all by default). poisson-exact (the streaming
-exact scheme) is not built yet: asking for it is an error.
+exact scheme, `CameraPixels`) is not in the study yet: asking for it is an error.
 
 Integrands (each trial draws its own instance; the same instances serve
 every sampler and N):
@@ -98,7 +98,7 @@ fn sampler_list(text: &str) -> Result<Vec<String>, String> {
     for name in &names {
         if name == NOT_BUILT {
             return Err(format!(
-                "{NOT_BUILT} (the streaming exact scheme) is not built yet; \
+                "{NOT_BUILT} (the streaming exact scheme) is not in the study yet; \
                  known: {}",
                 samplers::NAMES.join(",")
             ));
