@@ -8,8 +8,8 @@ mod samplers;
 
 use bridson::PixelSampler;
 use samplers::{
-    BestCandidateSampler, IndependentSampler, LowDiscrepancySampler, SobolOwenSampler,
-    StratifiedSampler, by_name, hash, permute, to_unit,
+    BestCandidateSampler, IndependentSampler, LowDiscrepancySampler, PoissonExactSampler,
+    SobolOwenSampler, StratifiedSampler, by_name, hash, permute, to_unit,
 };
 use std::collections::HashSet;
 
@@ -156,6 +156,13 @@ fn every_sampler_keeps_the_contract() {
             "sobol-owen",
             SobolOwenSampler::new(spp, seed).expect("valid"),
         );
+        // A stream per pixel: slow in a debug build, so the small counts.
+        if spp <= 7 {
+            check_contract(
+                "poisson-exact",
+                PoissonExactSampler::new(spp, seed).expect("valid"),
+            );
+        }
     }
 }
 

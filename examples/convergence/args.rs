@@ -9,10 +9,6 @@ use std::path::PathBuf;
 /// `Vec` as a repeated flag, and this name opts out of that.
 type List<T> = Vec<T>;
 
-/// Issue 20's streaming exact-scheme sampler: named in the study, not built
-/// yet.
-pub(crate) const NOT_BUILT: &str = "poisson-exact";
-
 const ABOUT: &str = "\
 Measures how fast each pixel sampler's equal-weight estimate 1/N sum f(x_i)
 of an integral over [0,1)^2 converges: the mean squared error over many
@@ -21,9 +17,9 @@ then six values a doubling up to --n-max. Prints a markdown table of the MSE
 at N = 4, 16, 64 and the slope of log MSE against log N fitted over N >= 16.";
 
 const AFTER: &str = "\
-Samplers: poisson-pixel, independent, stratified, best-candidate,
-low-discrepancy, sobol-owen (all by default). poisson-exact (the streaming
-exact scheme, `CameraPixels`) is not in the study yet: asking for it is an error.
+Samplers: poisson-pixel, poisson-exact (the streaming exact scheme,
+CameraPixels, one 1x1 stream per pixel), independent, stratified,
+best-candidate, low-discrepancy, sobol-owen (all by default).
 
 Integrands (each trial draws its own instance; the same instances serve
 every sampler and N):
@@ -96,13 +92,6 @@ impl Args {
 fn sampler_list(text: &str) -> Result<Vec<String>, String> {
     let names: Vec<String> = common::list(text)?;
     for name in &names {
-        if name == NOT_BUILT {
-            return Err(format!(
-                "{NOT_BUILT} (the streaming exact scheme) is not in the study yet; \
-                 known: {}",
-                samplers::NAMES.join(",")
-            ));
-        }
         if !samplers::NAMES.contains(&name.as_str()) {
             return Err(format!(
                 "unknown sampler {name:?}; known: {}",
@@ -123,7 +112,7 @@ mod tests {
         let args: Args = parse_line("convergence", "").expect("no flags");
         assert_eq!(args.n_max, 1024, "n-max");
         assert_eq!(args.trials, 1000, "trials");
-        assert_eq!(args.sampler_names().len(), 6, "every built sampler");
+        assert_eq!(args.sampler_names().len(), 7, "every sampler");
         assert_eq!(args.kinds(), Kind::ALL.to_vec(), "every integrand");
         let args: Args = parse_line(
             "convergence",
@@ -141,7 +130,6 @@ mod tests {
     #[test]
     fn bad_flags_are_rejected() {
         for line in [
-            "--samplers poisson-exact",
             "--samplers nope",
             "--integrands disk,square",
             "--n-max 0",

@@ -29,20 +29,23 @@
 mod best_candidate;
 mod independent;
 mod low_discrepancy;
+mod poisson_exact;
 mod sobol_owen;
 mod stratified;
 
 pub(crate) use best_candidate::BestCandidateSampler;
 pub(crate) use independent::IndependentSampler;
 pub(crate) use low_discrepancy::LowDiscrepancySampler;
+pub(crate) use poisson_exact::PoissonExactSampler;
 pub(crate) use sobol_owen::SobolOwenSampler;
 pub(crate) use stratified::StratifiedSampler;
 
 use bridson::{Error, PixelSampler, PoissonPixelSampler};
 
 /// The names [`by_name`] accepts, in the order a study lists them.
-pub(crate) const NAMES: [&str; 6] = [
+pub(crate) const NAMES: [&str; 7] = [
     "poisson-pixel",
+    "poisson-exact",
     "independent",
     "stratified",
     "best-candidate",
@@ -63,6 +66,7 @@ pub(crate) fn by_name(name: &str, spp: u32, seed: u64) -> Result<Box<dyn PixelSa
         "best-candidate" => BestCandidateSampler::new(spp, seed).map(|s| Box::new(s) as _),
         "low-discrepancy" => LowDiscrepancySampler::new(spp, seed).map(|s| Box::new(s) as _),
         "sobol-owen" => SobolOwenSampler::new(spp, seed).map(|s| Box::new(s) as _),
+        "poisson-exact" => PoissonExactSampler::new(spp, seed).map(|s| Box::new(s) as _),
         _ => {
             return Err(format!(
                 "unknown sampler {name:?}; known: {}",
