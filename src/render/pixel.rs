@@ -84,18 +84,18 @@ const SECOND: u64 = 0x1319_8a2e_0370_7344;
 /// 10-round permutations run side by side, and three table reads, with no
 /// allocation. The bank is the one-off cost, paid in [`new`](Self::new).
 /// Measured with `cargo bench --bench render` (release, a 512×512 image
-/// pixel by pixel, on a 2-core AMD EPYC VM shared with other work, load
-/// about 2.5):
+/// pixel by pixel, one thread, on a 2-core AMD EPYC VM; camera samples
+/// with the machine otherwise idle, bank builds under load):
 ///
 /// | samples per pixel | 1 | 4 | 16 | 64 | 256 | 4096 |
 /// |---|---|---|---|---|---|---|
-/// | camera samples per second | 56 M | 8.6 M | 9.4 M | 8.7 M | 11.3 M | |
+/// | camera samples per second | 84 M | 13.1 M | 13.4 M | 13.5 M | 13.3 M | |
 /// | bank build | 0.58 ms | 0.82 ms | 2.2 ms | 7.7 ms | 28 ms | 0.43 s |
 ///
-/// (One sample per pixel needs no permutation. A run of 16 at a lighter
-/// load gave 11.0 M per second.) The bank costs about 0.1 ms per sample
-/// per pixel, under 1 % of the time it takes to draw a 512×512 image's
-/// camera samples at any count.
+/// (One sample per pixel needs no permutation. Under load, with other
+/// builds running, the rates fell to 8.6–11.3 M per second.) The bank
+/// costs about 0.1 ms per sample per pixel, under 1 % of the time it takes
+/// to draw a 512×512 image's camera samples at any count.
 ///
 /// # Example: exactly 5 samples in every dimension
 /// ```
