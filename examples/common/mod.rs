@@ -31,6 +31,27 @@ pub(crate) enum Failure {
 
 /// Ends a run of the example `name`: prints the failure, if any, to stderr
 /// and returns the exit code it stands for.
+/// Calls `run::<N>(arg)` for the dimension `dim`, one of the literal
+/// dimensions listed (from the first to the last), or gives the usage
+/// error that names their range: the const parameter is fixed at compile
+/// time, so each dimension an example supports is one arm.
+#[allow(unused_macros, reason = "used by the examples that take --dim only")]
+macro_rules! by_dimension {
+    ($dim:expr, $run:ident($arg:expr), $first:literal $(, $n:literal)*) => {
+        match $dim {
+            $first => $run::<$first>($arg),
+            $($n => $run::<$n>($arg),)*
+            d => Err($crate::common::Failure::Usage(format!(
+                "--dim must be from {} to {}, got {d}",
+                $first,
+                [$first $(, $n)*][[$first $(, $n)*].len() - 1]
+            ))),
+        }
+    };
+}
+#[allow(unused_imports, reason = "used by the examples that take --dim only")]
+pub(crate) use by_dimension;
+
 pub(crate) fn finish(name: &str, result: Result<(), Failure>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -28,18 +28,7 @@ const REFERENCE_GREY: canvas::Rgb = [100, 100, 100];
 const CHART_SIZE: (u32, u32) = (640, 400);
 
 pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
-    match config.dim {
-        2 => run::<2>(config),
-        3 => run::<3>(config),
-        4 => run::<4>(config),
-        5 => run::<5>(config),
-        6 => run::<6>(config),
-        7 => run::<7>(config),
-        8 => run::<8>(config),
-        d => Err(Failure::Usage(format!(
-            "--dim must be from 2 to 8, got {d}"
-        ))),
-    }
+    crate::common::by_dimension!(config.dim, run(config), 2, 3, 4, 5, 6, 7, 8)
 }
 
 /// The sampler `config` describes, or the library's reason why not.

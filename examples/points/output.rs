@@ -13,19 +13,7 @@ pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
     if let Some(raster) = config.raster {
         return run_raster(config, raster);
     }
-    match config.dim {
-        1 => run::<1>(config),
-        2 => run::<2>(config),
-        3 => run::<3>(config),
-        4 => run::<4>(config),
-        5 => run::<5>(config),
-        6 => run::<6>(config),
-        7 => run::<7>(config),
-        8 => run::<8>(config),
-        d => Err(Failure::Usage(format!(
-            "--dim must be from 1 to 8, got {d}"
-        ))),
-    }
+    crate::common::by_dimension!(config.dim, run(config), 1, 2, 3, 4, 5, 6, 7, 8)
 }
 
 /// Builds the sampler from `config`, streams its points out and prints the
