@@ -134,6 +134,34 @@ fn sweep_fills_the_raster_evenly() {
     assert!(check_stream(&tiled, 11).is_ok(), "valid");
 }
 
+/// Tall rasters: the window's grid slides down its array many times (its
+/// array holds about twice the window's rows, then copies the live rows
+/// back), and the union must stay valid across every slide, for radii from
+/// a fifth of a pixel to beyond one, both schemes and exact mode.
+#[test]
+fn the_union_holds_while_the_grid_slides_down_a_tall_raster() {
+    for (w, h, r) in [
+        (3, 400, 0.21),
+        (17, 160, 0.39),
+        (2, 300, 1.3),
+        (9, 90, 0.11),
+    ] {
+        for scheme in [Scheme::Sweep, Scheme::Paper] {
+            let tiled = Tiled::builder(w, h)
+                .radius(r)
+                .scheme(scheme)
+                .build()
+                .unwrap();
+            let made = check_stream(&tiled, 5).unwrap_or_else(|e| panic!("{w}x{h} r={r}: {e}"));
+            let expected = f64::from(w * h) * 0.62 / (r * r);
+            assert!(
+                made as f64 > 0.5 * expected,
+                "{w}x{h} r={r} {scheme:?}: {made} points, about {expected:.0} expected"
+            );
+        }
+    }
+}
+
 #[test]
 fn per_pixel_sets_the_radius_by_the_measured_density() {
     let annulus = Tiled::builder(8, 8).per_pixel(4.0).build().unwrap();

@@ -92,7 +92,13 @@ impl<const N: usize> Dense<N> {
         let mut points = Vec::new();
         points.try_reserve_exact(1).ok()?;
         points.push([FAR; N]);
-        let full = Stencil::new(plan, &stride, radius, &[0; N], 1)?;
+        let shape = StencilShape {
+            reach: plan.reach,
+            side: plan.side,
+            eta: plan.eta,
+            radius,
+        };
+        let full = Stencil::new(&shape, &stride, &[0; N], 1)?;
         let mut seed_offsets: Vec<isize> = if N <= 3 {
             full.offsets.iter().copied().filter(|&o| o != 0).collect()
         } else {
@@ -114,7 +120,7 @@ impl<const N: usize> Dense<N> {
                 *p = rest % parts(N);
                 rest /= parts(N);
             }
-            stencils.push(Stencil::new(plan, &stride, radius, &part, parts(N))?);
+            stencils.push(Stencil::new(&shape, &stride, &part, parts(N))?);
         }
         let stencil_bytes = stencils
             .iter()
@@ -411,7 +417,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
 /// 2 up to 4-D (16 stencils of up to 841 cells there); whole cells above,
 /// where `2^N` stencils of thousands of cells would cost more memory than
 /// they save scanning.
-const fn parts(n: usize) -> usize {
+pub(crate) const fn parts(n: usize) -> usize {
     if n <= 4 { 2 } else { 1 }
 }
 
@@ -434,15 +440,27 @@ pub(crate) fn stencil_bytes_per_cell(n: usize) -> u64 {
         .saturating_add(16 + 24 + 12 + 16)
 }
 
+/// What a stencil is cut from: the search reach in cells on each axis, the
+/// cell sides, the rounding margin `η` (in cells) and the radius.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StencilShape<const N: usize> {
+    pub(crate) reach: [usize; N],
+    pub(crate) side: [f64; N],
+    pub(crate) eta: f64,
+    pub(crate) radius: f64,
+}
+
 /// The cells a candidate in one part of its cell must be checked against.
+/// Shared with the streaming window (`tiled/grid.rs`), whose rows are laid
+/// out with a fixed stride too.
 #[derive(Debug)]
-struct Stencil {
+pub(crate) struct Stencil {
     /// Linear offsets, nearest first, so that a conflict is usually found
     /// in the first few.
-    offsets: Vec<isize>,
+    pub(crate) offsets: Vec<isize>,
     /// The first and last offset of each row along axis 0 (up to 3-D): what
     /// [`Dense::prefetch_stencil`] asks for.
-    rows: Vec<[isize; 2]>,
+    pub(crate) rows: Vec<[isize; 2]>,
 }
 
 impl Stencil {
@@ -452,15 +470,14 @@ impl Stencil {
     /// cell that can hold a point closer than `r` to a point of that part,
     /// even with each index off by the rounding margin `η`. With one part
     /// this is Bridson's stencil, `gap_i = |d_i| - 1`.
-    fn new<const N: usize>(
-        plan: &DensePlan<N>,
+    pub(crate) fn new<const N: usize>(
+        shape: &StencilShape<N>,
         stride: &[usize; N],
-        radius: f64,
         part: &[usize; N],
         parts: usize,
     ) -> Option<Self> {
-        let r2 = radius * radius;
-        let reach: [isize; N] = plan.reach.map(|p| isize::try_from(p).unwrap_or(0));
+        let r2 = shape.radius * shape.radius;
+        let reach: [isize; N] = shape.reach.map(|p| isize::try_from(p).unwrap_or(0));
         let stride: [isize; N] = stride.map(|s| isize::try_from(s).unwrap_or(0));
         #[expect(clippy::cast_precision_loss, reason = "small counts")]
         let (parts_f, part_f) = (parts as f64, part.map(|k| k as f64));
@@ -471,7 +488,7 @@ impl Stencil {
         loop {
             let mut gap2 = 0.0;
             let mut centre2 = 0.0;
-            for ((&di, &side), &k) in d.iter().zip(&plan.side).zip(&part_f) {
+            for ((&di, &side), &k) in d.iter().zip(&shape.side).zip(&part_f) {
                 let (a, b) = (k / parts_f, (k + 1.0) / parts_f);
                 #[expect(clippy::cast_precision_loss, reason = "small offsets")]
                 let df = di as f64;
@@ -482,7 +499,7 @@ impl Stencil {
                 } else {
                     0.0
                 };
-                let gap = (gap - plan.eta).max(0.0) * side;
+                let gap = (gap - shape.eta).max(0.0) * side;
                 gap2 += gap * gap;
                 // From the part's centre to the cell's: the tie-break.
                 let centre = (df + 0.5 - 0.5 * (a + b)) * side;
@@ -547,7 +564,7 @@ impl Stencil {
     }
 
     /// Heap bytes held.
-    fn bytes(&self) -> u64 {
+    pub(crate) fn bytes(&self) -> u64 {
         vec_bytes(&self.offsets).saturating_add(vec_bytes(&self.rows))
     }
 }

@@ -26,18 +26,20 @@
 //! against every point within `r`, whichever pixel holds it.
 
 mod exact;
+mod grid;
+mod queue;
 mod window;
 
-use crate::candidates::{CandidateSampler, Candidates};
+use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
+use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::sampler::check_radius_and_attempts;
 use crate::vector::add;
-use core::cmp::Ordering;
 use core::iter::FusedIterator;
 use exact::{OVERSAMPLE, Thinning};
+use queue::BandQueue;
 use rand::Rng;
-use std::collections::BinaryHeap;
 use window::{Window, WindowPlan};
 
 /// How the streaming mode builds each pixel.
@@ -293,15 +295,17 @@ impl Tiled {
             rng,
             window: Window::new(self.plan, self.radius),
             candidates: CandidateSampler::new(s.candidates, self.radius, s.attempts),
+            ahead: OffsetBatch::new(),
             attempts: s.attempts,
             scheme: s.scheme,
             width: self.plan.width,
             height: self.plan.height,
             rows_below: self.plan.rows_below,
             near: near_offsets(self.radius, self.plan.width.max(self.plan.height)),
-            queue: BinaryHeap::new(),
+            queue: BandQueue::new(self.radius),
             jitter: SWEEP_BAND * self.radius,
             reach: 2.0 * self.radius,
+            radius_squared: self.radius * self.radius,
             started: false,
             next: 0,
             thinning: s
@@ -325,6 +329,8 @@ pub struct Pixels<R> {
     rng: R,
     window: Window,
     candidates: CandidateSampler<2>,
+    /// Annulus offsets drawn eight ahead, as in the batch sampler.
+    ahead: OffsetBatch<2>,
     attempts: u32,
     scheme: Scheme,
     width: usize,
@@ -332,12 +338,13 @@ pub struct Pixels<R> {
     rows_below: usize,
     /// Pixel offsets `(dx, dy)` whose box comes within `2r` of a pixel.
     near: Vec<(isize, isize)>,
-    /// Sweep scheme: the active points, smallest key first.
-    queue: BinaryHeap<Active>,
+    /// Sweep scheme: the active points, by key.
+    queue: BandQueue,
     /// `J`: height of the band in which the sweep works in random order.
     jitter: f64,
     /// `2r`: no candidate lands farther than this from its parent.
     reach: f64,
+    radius_squared: f64,
     started: bool,
     /// Index of the next pixel in scan order.
     next: usize,
@@ -350,44 +357,22 @@ pub struct Pixels<R> {
 /// closer to Bridson's fully random pick and cost window rows.
 const SWEEP_BAND: f64 = 4.0;
 
-/// An active point of the sweep with its queue key `y + u·J`.
-#[derive(Clone, Copy, Debug)]
-struct Active {
-    key: f64,
-    point: [f64; 2],
-}
-
-impl PartialEq for Active {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for Active {}
-
-impl PartialOrd for Active {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Active {
-    /// Reversed on the key, so that `BinaryHeap` (a max-heap) pops the
-    /// smallest key; ties broken on the coordinates, for a total order.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .key
-            .total_cmp(&self.key)
-            .then_with(|| other.point[1].total_cmp(&self.point[1]))
-            .then_with(|| other.point[0].total_cmp(&self.point[0]))
-    }
-}
-
 impl<R: Rng> Pixels<R> {
     /// Makes the next pixel and swaps its points into `points` (whose old
     /// contents are dropped), reusing its allocation; returns the pixel's
     /// `(x, y)`, or `None` at the end of the image.
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
+        let (x, y) = self.advance()?;
+        points.clear();
+        if let Some(slot) = self.window.slot_mut(x, y) {
+            core::mem::swap(points, &mut slot.points);
+        }
+        Some((u32::try_from(x).ok()?, u32::try_from(y).ok()?))
+    }
+
+    /// Makes the next pixel, leaving its points in its slot; its `(x, y)`,
+    /// or `None` at the end of the image.
+    fn advance(&mut self) -> Option<(usize, usize)> {
         let total = self.width.checked_mul(self.height)?;
         if self.next >= total {
             return None;
@@ -410,11 +395,7 @@ impl<R: Rng> Pixels<R> {
             _ => {}
         }
         self.next += 1;
-        points.clear();
-        if let Some(slot) = self.window.slot_mut(x, y) {
-            core::mem::swap(points, &mut slot.points);
-        }
-        Some((u32::try_from(x).ok()?, u32::try_from(y).ok()?))
+        Some((x, y))
     }
 
     /// Exact mode: how many points so far were top-up darts, placed in
@@ -433,15 +414,19 @@ impl<R: Rng> Pixels<R> {
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
         let done_at = (y + 1) as f64 + self.reach + self.jitter;
         loop {
-            while let Some(&top) = self.queue.peek() {
-                if top.key >= done_at {
-                    break;
+            // The next parent is taken one pick ahead, so that its cells are
+            // fetched while this one runs (the batch sampler draws its
+            // picks ahead for the same reason).
+            let mut next = self.queue.pop_below(done_at, &mut self.rng);
+            while let Some(parent) = next {
+                next = self.queue.pop_below(done_at, &mut self.rng);
+                if let Some(p) = &next {
+                    self.window.prefetch(p);
                 }
-                self.queue.pop();
-                if let Some(child) = self.spawn(&top.point, (0, y), false) {
+                if let Some(child) = self.spawn(&parent, (0, y), false) {
                     self.push(child);
                     // The parent stays active, under a fresh key.
-                    self.push(top.point);
+                    self.push(parent);
                 }
             }
             // A connected front reaches every pixel; this only seeds
@@ -467,7 +452,7 @@ impl<R: Rng> Pixels<R> {
 
     fn push(&mut self, point: [f64; 2]) {
         let key = point[1] + self.jitter * unit(&mut self.rng);
-        self.queue.push(Active { key, point });
+        self.queue.push(point, key);
     }
 
     /// Paper scheme: a fresh seed, then Bridson inside the pixel only.
@@ -494,28 +479,76 @@ impl<R: Rng> Pixels<R> {
     /// valid one. Candidates in pixels already emitted (before `current` in
     /// scan order), outside the raster or below the window are refused;
     /// with `only_current`, so is any outside the current pixel.
+    ///
+    /// The batch sampler's loop (`sampler.rs`, `grow_cached`): offsets drawn
+    /// ahead, and a [`ConflictCache`] of the parent's neighbours and of the
+    /// points that turned candidates away, checked before the grid. The
+    /// cache changes no decision.
+    #[inline(always)]
     fn spawn(
         &mut self,
         parent: &[f64; 2],
         current: (usize, usize),
         only_current: bool,
     ) -> Option<[f64; 2]> {
+        // The rectangle candidates may land in: the current pixel, or the
+        // rows from the current one to the window's last (pixels before
+        // `current` in the current row are never refused by it: the sweep
+        // finishes whole rows, from column 0).
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+        let (x0, x1, y0, y1) = if only_current {
+            let (x, y) = (current.0 as f64, current.1 as f64);
+            (x, x + 1.0, y, y + 1.0)
+        } else {
+            let last = (current.1 + self.rows_below + 1).min(self.height);
+            (0.0, self.width as f64, current.1 as f64, last as f64)
+        };
+        let radius = self.reach / 2.0;
+        let ahead = self.candidates.reads_ahead();
+        let near_origin = ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
+        let mut cache = ConflictCache::<2, 8>::new(*parent, radius);
+        self.window.seed(parent, 8, |q| cache.push(q));
+        // Far from the rectangle's sides (the usual case), no candidate can
+        // leave it: skip the per-attempt test, as the batch sampler does
+        // far from the box's faces. 2-D candidates lie within
+        // `2r·(1 + 10⁻⁷)` of the parent, and below `2²⁸·r` from the origin
+        // the sum's rounding is far below the slack.
+        let m = self.reach * (1.0 + 1e-6);
+        let interior = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN)
+            && parent[0] - x0 >= m
+            && x1 - parent[0] > m
+            && parent[1] - y0 >= m
+            && y1 - parent[1] > m;
         let mut state = self.candidates.start(&mut self.rng);
         for _ in 0..self.attempts {
-            let offset = self.candidates.offset(&mut self.rng, &mut state);
-            let c = add(parent, &offset);
-            let Some(pixel) = self.pixel_of(&c) else {
-                continue;
+            let (offset, offset_in_r) = if ahead {
+                self.ahead.next(&self.candidates, &mut self.rng)
+            } else {
+                (self.candidates.offset(&mut self.rng, &mut state), [0.0; 2])
             };
-            let before = (pixel.1, pixel.0) < (current.1, current.0);
-            if before
-                || (only_current && pixel != current)
-                || pixel.1 > current.1 + self.rows_below
-                || self.window.conflicts(&c)
-            {
+            let c = add(parent, &offset);
+            if !(interior || (c[0] >= x0 && c[0] < x1 && c[1] >= y0 && c[1] < y1)) {
                 continue;
             }
-            if self.window.insert(c, pixel) {
+            let blocked = if near_origin {
+                cache.block_relative(&offset_in_r)
+            } else {
+                cache.block(&c, self.radius_squared)
+            };
+            if blocked {
+                continue;
+            }
+            if let Some(q) = self.window.conflict(&c) {
+                cache.push(&q);
+                continue;
+            }
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "inside the raster, so in 0..width and 0..height"
+            )]
+            let pixel = (c[0] as usize, c[1] as usize);
+            if self.window.insert(c, pixel, only_current) {
                 return Some(c);
             }
         }
@@ -529,10 +562,10 @@ impl<R: Rng> Pixels<R> {
         let (fx, fy) = (x as f64, y as f64);
         for _ in 0..self.attempts {
             let p = [fx + unit(&mut self.rng), fy + unit(&mut self.rng)];
-            if self.pixel_of(&p) != Some((x, y)) || self.window.conflicts(&p) {
+            if self.pixel_of(&p) != Some((x, y)) || self.window.conflict(&p).is_some() {
                 continue;
             }
-            if self.window.insert(p, (x, y)) {
+            if self.window.insert(p, (x, y), self.scheme == Scheme::Paper) {
                 if self.scheme != Scheme::Paper {
                     self.push(p);
                 }
@@ -584,9 +617,24 @@ impl<R: Rng> Iterator for Pixels<R> {
     type Item = Pixel;
 
     fn next(&mut self) -> Option<Pixel> {
-        let mut points = Vec::new();
-        let (x, y) = self.next_into(&mut points)?;
-        Some(Pixel { x, y, points })
+        let (x, y) = self.advance()?;
+        // A copy of exactly the pixel's size, and the slot keeps its
+        // allocation: one allocation a pixel, where handing the slot's
+        // vector out would cost the slot two or three as it regrows.
+        let points = self
+            .window
+            .slot_mut(x, y)
+            .map(|slot| {
+                let points = slot.points.clone();
+                slot.points.clear();
+                points
+            })
+            .unwrap_or_default();
+        Some(Pixel {
+            x: u32::try_from(x).ok()?,
+            y: u32::try_from(y).ok()?,
+            points,
+        })
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {

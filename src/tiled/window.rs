@@ -1,6 +1,7 @@
 //! The rolling window of the streaming mode: the few pixel rows around the
-//! current one, with their points, their active points and a background
-//! grid, in ring buffers that are reused as the scan moves down the image.
+//! current one, with their points and active points in a ring buffer of
+//! pixel slots that is reused as the scan moves down the image, and a
+//! background grid whose rows slide with it (`tiled/grid.rs`).
 //!
 //! Memory is proportional to the image width times the window height
 //! (`ceil(r)` rows above the current row for the minimum-distance checks,
@@ -8,12 +9,8 @@
 //! their pixel, each count capped at the image height; see
 //! `WindowPlan::new`), never to the image height.
 
+use super::grid::RollingGrid;
 use crate::grid::rounding_margin;
-use crate::vector::distance_squared;
-
-/// An empty grid cell: a point at infinity, so the scan never branches on
-/// emptiness (as in the dense batch grid).
-const FAR: [f64; 2] = [f64::INFINITY; 2];
 
 /// Points and active points of one pixel, in generation order.
 #[derive(Debug, Default, Clone)]
@@ -76,9 +73,10 @@ impl WindowPlan {
         };
         let rows_above = whole(radius)?.min(height);
         // The sweep works keys up to y + 1 + 2r + J (J = 4r) while finishing
-        // row y; such a parent lies at most J below its key, and its children
-        // 2r below it: 8r below the row, plus the row itself.
-        let rows_below = (whole(8.0 * radius)? + 1).min(height);
+        // row y, or a bucket height (r/4) more (`tiled/queue.rs`); such a
+        // parent lies at most J below its key, and its children 2r below
+        // it: 8.25r below the row, plus the row itself.
+        let rows_below = (whole((8.0 + super::queue::BUCKET) * radius)? + 1).min(height);
         let side = 1.0 / c;
         // Rounding margin on the cell index, as for the batch grid.
         #[expect(clippy::cast_precision_loss, reason = "a bound, not a count")]
@@ -87,32 +85,24 @@ impl WindowPlan {
         // to exceed it, which also bounds the stencil for huge radii.
         let raster_cells = width.max(height).checked_mul(cells_per_pixel)?;
         let reach = whole(radius / side + eta)?.min(raster_cells);
-        let columns = width.checked_mul(cells_per_pixel)?.checked_add(2 * reach)?;
         let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
         let cell_rows = ring_rows.checked_mul(cells_per_pixel)?;
-        let cells = columns.checked_mul(cell_rows)?;
-        let grid_bytes = cells.checked_mul(size_of::<[f64; 2]>())?;
+        height.checked_mul(cells_per_pixel)?;
+        let grid_bytes = RollingGrid::bytes(width.checked_mul(cells_per_pixel)?, cell_rows, reach)?;
         let slot_bytes = width
             .checked_mul(ring_rows)?
             .checked_mul(size_of::<Slot>())?;
-        // The cell stencil and the table of nearby pixels (both squares of
-        // their reach) are allocated too; a huge radius on a wide raster
-        // must be an error, not an abort.
-        let side_cells = reach.checked_mul(2)?.checked_add(1)?;
-        let stencil_bytes =
-            side_cells
-                .checked_mul(side_cells)?
-                .checked_mul(size_of::<(f64, usize, isize, isize)>())?;
+        // The table of nearby pixels (a square of its reach) is allocated
+        // too; a huge radius on a wide raster must be an error, not an
+        // abort.
         let near = whole(2.0 * radius)?.min(width.max(height));
         let near_side = near.checked_mul(2)?.checked_add(1)?;
         let near_bytes = near_side
             .checked_mul(near_side)?
             .checked_mul(size_of::<(isize, isize)>())?;
-        let bytes = grid_bytes
-            .checked_add(slot_bytes)?
-            .checked_add(stencil_bytes)?
-            .checked_add(near_bytes)?;
-        let bytes = u64::try_from(bytes).ok()?;
+        let bytes = u64::try_from(slot_bytes.checked_add(near_bytes)?)
+            .ok()?
+            .checked_add(grid_bytes)?;
         Some(Self {
             width,
             height,
@@ -137,37 +127,28 @@ pub(crate) struct Window {
     /// `ring_rows × width` pixel slots; pixel row `y` lives in ring row
     /// `y % ring_rows`.
     slots: Vec<Slot>,
-    /// `ring_rows · c` cell rows of `columns` cells, padded by `reach`
-    /// empty cells left and right; cell row `j` lives in ring row
-    /// `j % (ring_rows · c)`.
-    cells: Vec<[f64; 2]>,
-    columns: usize,
-    cell_rows: usize,
-    inv_side: f64,
-    radius_squared: f64,
-    /// Cell offsets `(dx, dy)` that can hold a point closer than `r`,
-    /// nearest first.
-    stencil: Vec<(isize, isize)>,
+    grid: RollingGrid,
     /// The lowest pixel row still held (rows above it were dropped).
     top: usize,
 }
 
 impl Window {
+    /// The window for `plan`, whose sizes [`WindowPlan::new`] checked.
     pub(crate) fn new(plan: WindowPlan, radius: f64) -> Self {
         let c = plan.cells_per_pixel;
-        let columns = plan.width * c + 2 * plan.reach;
-        let cell_rows = plan.ring_rows() * c;
         #[expect(clippy::cast_precision_loss, reason = "c <= 65536")]
         let side = 1.0 / c as f64;
+        let grid = RollingGrid::new(
+            (plan.width * c, plan.height.saturating_mul(c)),
+            plan.ring_rows() * c,
+            side,
+            (radius, plan.reach, plan.eta),
+        )
+        .unwrap_or_else(RollingGrid::empty);
         Self {
             plan,
             slots: vec![Slot::default(); plan.ring_rows() * plan.width],
-            cells: vec![FAR; columns * cell_rows],
-            columns,
-            cell_rows,
-            inv_side: 1.0 / side,
-            radius_squared: radius * radius,
-            stencil: stencil(plan.reach, side, radius, plan.eta),
+            grid,
             top: 0,
         }
     }
@@ -186,15 +167,10 @@ impl Window {
                 slot.kept.clear();
                 slot.count = 0;
             }
-            let c = self.plan.cells_per_pixel;
-            for j in self.top * c..(self.top + 1) * c {
-                let r = j % self.cell_rows;
-                if let Some(cells) = self.cells.get_mut(r * self.columns..(r + 1) * self.columns) {
-                    cells.fill(FAR);
-                }
-            }
             self.top += 1;
         }
+        let c = self.plan.cells_per_pixel;
+        self.grid.slide_to(self.top * c, self.plan.ring_rows() * c);
     }
 
     /// Whether pixel row `y` is inside the window (so it may hold points).
@@ -228,96 +204,42 @@ impl Window {
         }
     }
 
-    /// The global cell of a point inside the raster.
-    fn cell_of(&self, p: &[f64; 2]) -> (usize, usize) {
-        let c = self.plan.cells_per_pixel;
-        let clamp = |v: f64, cells: usize| {
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                reason = "saturating cast of a non-negative value, then clamped"
-            )]
-            let i = (v * self.inv_side) as i64 as usize;
-            i.min(cells - 1)
-        };
-        (
-            clamp(p[0], self.plan.width * c),
-            clamp(p[1], self.plan.height * c),
-        )
+    /// A stored point closer than `r` to `p` (a point inside the raster,
+    /// in a row at or below the current one), if any.
+    #[inline(always)]
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> Option<[f64; 2]> {
+        self.grid.conflict(p)
     }
 
-    /// Whether a stored point is closer than `r` to `p` (inside the raster,
-    /// in a row the window holds).
-    pub(crate) fn conflicts(&self, p: &[f64; 2]) -> bool {
-        let (cx, cy) = self.cell_of(p);
-        let c = self.plan.cells_per_pixel;
-        // Rows outside the raster or the window hold nothing (and rows
-        // past the window's bottom would alias the ring's top).
-        let first_row = self.top * c;
-        let end_row = ((self.top + self.plan.ring_rows()) * c).min(self.plan.height * c);
-        for &(dx, dy) in &self.stencil {
-            let Some(gy) = cy.checked_add_signed(dy) else {
-                continue;
-            };
-            if gy < first_row || gy >= end_row {
-                continue;
-            }
-            let column = (cx + self.plan.reach).wrapping_add_signed(dx);
-            let index = (gy % self.cell_rows) * self.columns + column;
-            if let Some(q) = self.cells.get(index)
-                && distance_squared(p, q) < self.radius_squared
-            {
-                return true;
-            }
-        }
-        false
+    /// Asks the cache for the grid cells around `p`.
+    #[inline(always)]
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) {
+        self.grid.prefetch(p);
     }
 
-    /// Stores `p` in the grid and in its pixel's lists (as active too).
-    /// Returns `false` (storing nothing) if its cell is taken, which only
+    /// Hands up to `limit` stored points near `p` to `take`.
+    #[inline(always)]
+    pub(crate) fn seed(&self, p: &[f64; 2], limit: usize, take: impl FnMut(&[f64; 2])) {
+        self.grid.seed(p, limit, take);
+    }
+
+    /// Stores `p` in the grid and in its pixel's points, and in its
+    /// pixel's active list if `active` (the paper's scheme keeps one per
+    /// pixel; the sweep's queue holds its own). Returns `false` (storing nothing) if its cell is taken, which only
     /// rounding can cause; the caller treats it as a failed attempt.
-    pub(crate) fn insert(&mut self, p: [f64; 2], pixel: (usize, usize)) -> bool {
-        let (cx, cy) = self.cell_of(&p);
-        let index = (cy % self.cell_rows) * self.columns + cx + self.plan.reach;
-        match self.cells.get_mut(index) {
-            Some(cell) if cell[0] == f64::INFINITY => *cell = p,
-            _ => return false,
+    pub(crate) fn insert(&mut self, p: [f64; 2], pixel: (usize, usize), active: bool) -> bool {
+        let index = self.slot_index(pixel.0, pixel.1);
+        if index >= self.slots.len() || !self.grid.insert(p) {
+            return false;
         }
-        let Some(slot) = self.slot_mut(pixel.0, pixel.1) else {
+        let Some(slot) = self.slots.get_mut(index) else {
             return false;
         };
         slot.points.push(p);
-        slot.active.push(p);
+        if active {
+            slot.active.push(p);
+        }
         slot.count += 1;
         true
     }
-}
-
-/// Offsets `(dx, dy)` of the cells that can hold a point closer than `r` to
-/// a point of the centre cell (with a rounding margin), nearest first.
-///
-/// The same test as the dense grid's whole-cell stencil
-/// (`grid/dense.rs`, `Stencil::new` with one part), kept apart on purpose:
-/// the window's rows wrap in a ring buffer, so an offset is a `(dx, dy)`
-/// pair resolved row by row, not one linear offset into a padded array; and
-/// its cells hold lists of points, not one index, so the dense grid's
-/// parts-of-a-cell stencils would buy little here.
-fn stencil(reach: usize, side: f64, radius: f64, eta: f64) -> Vec<(isize, isize)> {
-    let reach = isize::try_from(reach).unwrap_or(0);
-    let gap = |d: isize| {
-        #[expect(clippy::cast_precision_loss, reason = "small offsets")]
-        let a = d.unsigned_abs() as f64;
-        (a - 1.0 - eta).max(0.0) * side
-    };
-    let mut cells = Vec::new();
-    for dy in -reach..=reach {
-        for dx in -reach..=reach {
-            let g2 = gap(dx) * gap(dx) + gap(dy) * gap(dy);
-            if g2 < radius * radius {
-                cells.push((g2, dx * dx + dy * dy, dx, dy));
-            }
-        }
-    }
-    cells.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    cells.into_iter().map(|(_, _, dx, dy)| (dx, dy)).collect()
 }

@@ -1,0 +1,287 @@
+//! The streaming window's background grid: Bridson's dense grid over the
+//! few cell rows the sweep can still touch, in one flat array whose rows
+//! slide down the image.
+//!
+//! Cells have side `1/c <= r/√2` (`c` cells per pixel, so cell rows line up
+//! with pixel rows) and hold the point itself (`[f64; 2]`, or [`FAR`] when
+//! empty): the window is small enough to sit in cache, so inline
+//! coordinates save the batch grid's second load, and in 2-D about half the
+//! cells are occupied. The rows live in a flat array with a fixed stride,
+//! so a neighbour search is the batch grid's: linear offsets, nearest
+//! first, with the stencil of the quarter of the cell the candidate lies in
+//! (`grid::dense::Stencil`, the same construction and rounding margin).
+//! Instead of addressing rows modulo the window height (a division per
+//! cell), the array holds about twice the window's rows; when the window
+//! reaches its end, the live rows are copied back to its start. That costs
+//! one row copy per row of the image, amortised.
+
+use crate::grid::dense::{Stencil, StencilShape, parts};
+use crate::vector::distance_squared;
+
+/// An empty cell: a point at infinity, so the scan never branches on
+/// emptiness.
+pub(crate) const FAR: [f64; 2] = [f64::INFINITY; 2];
+
+/// How many occupied cells [`RollingGrid::seed`] gathers at most.
+const SEED_MAX: usize = 16;
+
+/// Cells scanned together before branching on a conflict (as the batch
+/// grid's `SCAN_CHUNK`).
+const SCAN_CHUNK: usize = 8;
+
+#[derive(Debug)]
+pub(crate) struct RollingGrid {
+    /// `rows × columns` cells; array row `a` holds global cell row
+    /// `first + a - reach`.
+    cells: Vec<[f64; 2]>,
+    columns: usize,
+    rows: usize,
+    /// Cells searched on each side; also the padding, in cells, left, right
+    /// and above the first live row.
+    reach: usize,
+    /// The global cell row at array row `reach`.
+    first: usize,
+    /// Cells per axis inside the raster.
+    cells_x: usize,
+    cells_y: usize,
+    inv_side: f64,
+    radius_squared: f64,
+    /// Stencils of the four quarters of a cell.
+    parts: Vec<Stencil>,
+    /// The whole cell's stencil without the centre, in address order: the
+    /// seed's cells.
+    seed_offsets: Vec<isize>,
+    /// The first and last offset of each row of the whole cell's stencil:
+    /// what [`Self::prefetch`] asks for.
+    stencil_rows: Vec<[isize; 2]>,
+}
+
+impl RollingGrid {
+    /// A grid for a raster of `cells_x × cells_y` cells of side `side`, of
+    /// which at most `live_rows` rows are in use at once, searched `reach`
+    /// cells around with rounding margin `eta`. `None` if a size overflows.
+    pub(crate) fn new(
+        (cells_x, cells_y): (usize, usize),
+        live_rows: usize,
+        side: f64,
+        (radius, reach, eta): (f64, usize, f64),
+    ) -> Option<Self> {
+        let (columns, rows) = Self::size(cells_x, live_rows, reach)?;
+        let shape = StencilShape {
+            reach: [reach; 2],
+            side: [side; 2],
+            eta,
+            radius,
+        };
+        let stride = [1, columns];
+        let full = Stencil::new(&shape, &stride, &[0, 0], 1)?;
+        let mut seed_offsets: Vec<isize> =
+            full.offsets.iter().copied().filter(|&o| o != 0).collect();
+        seed_offsets.sort_unstable();
+        let stencil_rows = full.rows.clone();
+        let count = parts(2) * parts(2);
+        let parts = (0..count)
+            .map(|k| Stencil::new(&shape, &stride, &[k % parts(2), k / parts(2)], parts(2)))
+            .collect::<Option<Vec<_>>>()?;
+        Some(Self {
+            cells: vec![FAR; columns.checked_mul(rows)?],
+            columns,
+            rows,
+            reach,
+            first: 0,
+            cells_x,
+            cells_y,
+            inv_side: 1.0 / side,
+            radius_squared: radius * radius,
+            parts,
+            seed_offsets,
+            stencil_rows,
+        })
+    }
+
+    /// A grid with no cells, where nothing conflicts and nothing can be
+    /// stored: what [`Self::new`]'s caller falls back to if a size it
+    /// checked beforehand still fails (it cannot), so that the stream ends
+    /// empty instead of panicking.
+    pub(crate) fn empty() -> Self {
+        Self {
+            cells: Vec::new(),
+            columns: 0,
+            rows: 0,
+            reach: 0,
+            first: 0,
+            cells_x: 1,
+            cells_y: 1,
+            inv_side: 1.0,
+            radius_squared: 0.0,
+            parts: Vec::new(),
+            seed_offsets: Vec::new(),
+            stencil_rows: Vec::new(),
+        }
+    }
+
+    /// Columns and array rows: the live rows and their padding, doubled so
+    /// that a copy back is needed only once per `live_rows` rows.
+    fn size(cells_x: usize, live_rows: usize, reach: usize) -> Option<(usize, usize)> {
+        let columns = cells_x.checked_add(reach.checked_mul(2)?)?;
+        let rows = live_rows
+            .checked_add(reach.checked_mul(2)?)?
+            .checked_mul(2)?;
+        Some((columns, rows))
+    }
+
+    /// Heap bytes of a grid built with these sizes (cells and stencils; the
+    /// stencils are bounded by the `(2·reach + 1)²` block they are cut
+    /// from, as the batch grid counts them).
+    pub(crate) fn bytes(cells_x: usize, live_rows: usize, reach: usize) -> Option<u64> {
+        let (columns, rows) = Self::size(cells_x, live_rows, reach)?;
+        let cells = columns
+            .checked_mul(rows)?
+            .checked_mul(size_of::<[f64; 2]>())?;
+        let side = reach.checked_mul(2)?.checked_add(1)?;
+        let block = side.checked_mul(side)?;
+        let per_cell = usize::try_from(crate::grid::dense::stencil_bytes_per_cell(2)).ok()?;
+        let stencils = block.checked_mul(per_cell)?;
+        u64::try_from(cells.checked_add(stencils)?).ok()
+    }
+
+    /// Makes global cell rows from `row` on addressable, with every row
+    /// up to `row + live_rows` (plus the search reach) in the array,
+    /// copying the rows still needed to the array's start when the window
+    /// has slid past its end. Rows above `row` are no longer needed.
+    pub(crate) fn slide_to(&mut self, row: usize, live_rows: usize) {
+        // One past the last global row the array holds.
+        let end = self.first + self.rows - self.reach;
+        if row <= self.first || row + live_rows + self.reach <= end {
+            return;
+        }
+        // Drop the array rows above `row - reach`; the rest move up.
+        let start = (row - self.first).saturating_mul(self.columns);
+        let kept = self.cells.len().saturating_sub(start);
+        if kept > 0 {
+            self.cells.copy_within(start.., 0);
+        }
+        if let Some(rest) = self.cells.get_mut(kept..) {
+            rest.fill(FAR);
+        }
+        self.first = row;
+    }
+
+    /// The array index of cell `(cx, cy)` (global), or `usize::MAX` if it
+    /// is above the array.
+    #[inline(always)]
+    fn index(&self, cx: usize, cy: usize) -> usize {
+        match (cy + self.reach).checked_sub(self.first) {
+            Some(a) => a * self.columns + cx + self.reach,
+            None => usize::MAX,
+        }
+    }
+
+    /// The global cell of a point inside the raster, and the quarter of the
+    /// cell it lies in.
+    #[inline(always)]
+    fn locate(&self, p: &[f64; 2]) -> (usize, usize, usize) {
+        let axis = |v: f64, last: usize| {
+            let t = v * self.inv_side;
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                clippy::cast_precision_loss,
+                reason = "saturating casts of non-negative values, clamped; cells < 2^53"
+            )]
+            let (i, k) = {
+                let i = ((t as i64).max(0) as usize).min(last);
+                let k = (((t - i as f64) * 2.0) as i64).clamp(0, 1);
+                (i, k as usize)
+            };
+            (i, k)
+        };
+        let (cx, kx) = axis(p[0], self.cells_x - 1);
+        let (cy, ky) = axis(p[1], self.cells_y - 1);
+        (cx, cy, kx + 2 * ky)
+    }
+
+    /// A stored point closer than `r` to `p` (inside the raster, in a row
+    /// the window holds), if any: the nearest cells first, eight at a time.
+    #[inline(always)]
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> Option<[f64; 2]> {
+        let (cx, cy, part) = self.locate(p);
+        let base = self.index(cx, cy);
+        let stencil = self.parts.get(part)?;
+        for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
+            let mut hit = false;
+            for &off in chunk {
+                let q = self
+                    .cells
+                    .get(base.wrapping_add_signed(off))
+                    .unwrap_or(&FAR);
+                hit |= distance_squared(p, q) < self.radius_squared;
+            }
+            if hit {
+                return chunk
+                    .iter()
+                    .filter_map(|&off| self.cells.get(base.wrapping_add_signed(off)))
+                    .find(|q| distance_squared(p, q) < self.radius_squared)
+                    .copied();
+            }
+        }
+        None
+    }
+
+    /// Hands the points of the cells around `p` (up to `limit`) to `take`:
+    /// its nearest neighbours, which turn away most of its candidates. Two
+    /// passes, as the batch grid's seed: the occupied cells' points in
+    /// address order without a branch (whether a cell is empty is a coin
+    /// toss the predictor loses), then those points.
+    #[inline(always)]
+    pub(crate) fn seed(&self, p: &[f64; 2], limit: usize, mut take: impl FnMut(&[f64; 2])) {
+        let (cx, cy, _) = self.locate(p);
+        let base = self.index(cx, cy);
+        let mut found = [FAR; SEED_MAX];
+        let mut n = 0;
+        for &off in &self.seed_offsets {
+            let q = self
+                .cells
+                .get(base.wrapping_add_signed(off))
+                .copied()
+                .unwrap_or(FAR);
+            // Past SEED_MAX occupied cells, later ones overwrite earlier
+            // ones: any subset suits the cache.
+            if let Some(slot) = found.get_mut(n % SEED_MAX) {
+                *slot = q;
+            }
+            n += usize::from(q[0] != f64::INFINITY);
+        }
+        for q in found.iter().take(n.min(limit)) {
+            take(q);
+        }
+    }
+
+    /// Asks for the cells around `p` (each row of the stencil is one or two
+    /// cache lines): the sweep picks its next parent anywhere along the
+    /// front, so its neighbourhood is seldom in the nearest cache.
+    #[inline(always)]
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) {
+        let (cx, cy, _) = self.locate(p);
+        let base = self.index(cx, cy);
+        for &[first, last] in &self.stencil_rows {
+            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(first));
+            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(last));
+        }
+    }
+
+    /// Stores `p` in its cell; `false` (storing nothing) if the cell is
+    /// taken, which only rounding can cause, or lies outside the array.
+    #[inline(always)]
+    pub(crate) fn insert(&mut self, p: [f64; 2]) -> bool {
+        let (cx, cy, _) = self.locate(&p);
+        let index = self.index(cx, cy);
+        match self.cells.get_mut(index) {
+            Some(cell) if cell[0] == f64::INFINITY => {
+                *cell = p;
+                true
+            }
+            _ => false,
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! The sweep's queue of active points: a bucket queue on the key `y + u·J`.
+//!
+//! The sweep must always work an active point whose key is among the
+//! smallest, so that the work front moves down the image in a band about
+//! `J` tall (see the module docs of `tiled`). A binary heap does that
+//! exactly but costs `O(log n)` unpredictable branches a pop, about a tenth
+//! of the sweep's instructions. Here the keys are cut into buckets of
+//! height [`BUCKET`]`·r`, kept in order; a pop takes a uniformly random
+//! point of the lowest non-empty bucket. Within a bucket the order is as
+//! random as the keys were, so the process is the heap's with the key
+//! rounded down to a multiple of the bucket height. What the row emission
+//! relies on holds as before: once no bucket below `limit` holds a point,
+//! every remaining key is at least `limit`.
+
+use crate::random::below;
+use rand::Rng;
+use std::collections::VecDeque;
+
+/// Bucket height, in radii (`J = 4r` spans 16 buckets).
+pub(crate) const BUCKET: f64 = 0.25;
+
+#[derive(Debug)]
+pub(crate) struct BandQueue {
+    /// Bucket `i` holds the points whose key lies in
+    /// `[(base + i)·h, (base + i + 1)·h)`.
+    buckets: VecDeque<Vec<[f64; 2]>>,
+    /// The bucket number of `buckets[0]`.
+    base: u64,
+    height: f64,
+    inv_height: f64,
+    /// Emptied buckets, kept for their allocations.
+    spare: Vec<Vec<[f64; 2]>>,
+}
+
+impl BandQueue {
+    /// An empty queue for radius `r`.
+    pub(crate) fn new(radius: f64) -> Self {
+        let height = BUCKET * radius;
+        Self {
+            buckets: VecDeque::new(),
+            base: 0,
+            height,
+            inv_height: 1.0 / height,
+            spare: Vec::new(),
+        }
+    }
+
+    /// Queues `point` under `key` (non-negative).
+    pub(crate) fn push(&mut self, point: [f64; 2], key: f64) {
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "a saturating cast of a non-negative key"
+        )]
+        let bucket = (key * self.inv_height) as u64;
+        if self.buckets.is_empty() {
+            self.base = bucket;
+        }
+        // A key below the front bucket (a child above its parent, a seed
+        // behind the front) gets buckets of its own in front: every key
+        // stays in its bucket, so none is worked later than its key says.
+        while bucket < self.base {
+            let fresh = self.spare.pop().unwrap_or_default();
+            self.buckets.push_front(fresh);
+            self.base -= 1;
+        }
+        let at = bucket - self.base;
+        let Ok(at) = usize::try_from(at) else {
+            return;
+        };
+        while self.buckets.len() <= at {
+            let fresh = self.spare.pop().unwrap_or_default();
+            self.buckets.push_back(fresh);
+        }
+        if let Some(list) = self.buckets.get_mut(at) {
+            list.push(point);
+        }
+    }
+
+    /// A random point of the lowest non-empty bucket, if that bucket starts
+    /// below `limit`; removed from the queue.
+    pub(crate) fn pop_below<R: Rng + ?Sized>(
+        &mut self,
+        limit: f64,
+        rng: &mut R,
+    ) -> Option<[f64; 2]> {
+        loop {
+            let front = self.buckets.front_mut()?;
+            if front.is_empty() {
+                if let Some(empty) = self.buckets.pop_front() {
+                    self.spare.push(empty);
+                }
+                self.base += 1;
+                continue;
+            }
+            #[expect(clippy::cast_precision_loss, reason = "bucket numbers < 2^53")]
+            let start = self.base as f64 * self.height;
+            if start >= limit {
+                return None;
+            }
+            let i = below(rng, front.len());
+            return Some(front.swap_remove(i));
+        }
+    }
+}
