@@ -51,9 +51,10 @@ pub(crate) struct RollingGrid {
     /// The whole cell's stencil without the centre, in address order: the
     /// seed's cells.
     seed_offsets: Vec<isize>,
-    /// The first and last offset of each row of the whole cell's stencil:
-    /// what [`Self::prefetch`] asks for.
-    stencil_rows: Vec<[isize; 2]>,
+    /// The offset of every cache line of the block a pick's candidates
+    /// search (the parent's cell, plus `2r` for the candidates, plus the
+    /// reach): what [`Self::prefetch`] asks for.
+    block_lines: Vec<isize>,
 }
 
 impl RollingGrid {
@@ -78,7 +79,7 @@ impl RollingGrid {
         let mut seed_offsets: Vec<isize> =
             full.offsets.iter().copied().filter(|&o| o != 0).collect();
         seed_offsets.sort_unstable();
-        let stencil_rows = full.rows.clone();
+        let block_lines = block_lines(radius, side, reach, columns);
         let count = parts(2) * parts(2);
         let parts = (0..count)
             .map(|k| Stencil::new(&shape, &stride, &[k % parts(2), k / parts(2)], parts(2)))
@@ -95,7 +96,7 @@ impl RollingGrid {
             radius_squared: radius * radius,
             parts,
             seed_offsets,
-            stencil_rows,
+            block_lines,
         })
     }
 
@@ -116,7 +117,7 @@ impl RollingGrid {
             radius_squared: 0.0,
             parts: Vec::new(),
             seed_offsets: Vec::new(),
-            stencil_rows: Vec::new(),
+            block_lines: Vec::new(),
         }
     }
 
@@ -257,16 +258,16 @@ impl RollingGrid {
         }
     }
 
-    /// Asks for the cells around `p` (each row of the stencil is one or two
-    /// cache lines): the sweep picks its next parent anywhere along the
-    /// front, so its neighbourhood is seldom in the nearest cache.
+    /// Asks for every cell a pick around `p` will read: the sweep picks
+    /// its next parent anywhere along the front, whose width can put the
+    /// window's live rows past the nearest caches, and its candidates,
+    /// up to `2r` away, search cells up to `2r` plus the reach from it.
     #[inline(always)]
     pub(crate) fn prefetch(&self, p: &[f64; 2]) {
         let (cx, cy, _) = self.locate(p);
         let base = self.index(cx, cy);
-        for &[first, last] in &self.stencil_rows {
-            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(first));
-            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(last));
+        for &line in &self.block_lines {
+            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(line));
         }
     }
 
@@ -284,4 +285,32 @@ impl RollingGrid {
             _ => false,
         }
     }
+}
+
+/// The offsets of the cache lines (64 bytes, 4 cells) covering the square
+/// of cells a pick searches: `2r/side + reach` cells on each side of the
+/// parent's.
+fn block_lines(radius: f64, side: f64, reach: usize, columns: usize) -> Vec<isize> {
+    const CELLS_PER_LINE: usize = 64 / size_of::<[f64; 2]>();
+    let span = (2.0 * radius / side).ceil();
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "a few cells: 2r / side = 2√2"
+    )]
+    let half = (span as usize).saturating_add(reach).min(columns / 2);
+    let (Ok(half), Ok(columns)) = (isize::try_from(half), isize::try_from(columns)) else {
+        return Vec::new();
+    };
+    let step = isize::try_from(CELLS_PER_LINE).unwrap_or(1);
+    let mut lines = Vec::new();
+    for dy in -half..=half {
+        let mut dx = -half;
+        while dx <= half {
+            lines.push(dy * columns + dx);
+            dx += step;
+        }
+        lines.push(dy * columns + half);
+    }
+    lines
 }

@@ -414,19 +414,19 @@ impl<R: Rng> Pixels<R> {
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
         let done_at = (y + 1) as f64 + self.reach + self.jitter;
         loop {
-            // The next parent is taken one pick ahead, so that its cells are
-            // fetched while this one runs (the batch sampler draws its
-            // picks ahead for the same reason).
-            let mut next = self.queue.pop_below(done_at, &mut self.rng);
-            while let Some(parent) = next {
-                next = self.queue.pop_below(done_at, &mut self.rng);
-                if let Some(p) = &next {
-                    self.window.prefetch(p);
-                }
-                if let Some(child) = self.spawn(&parent, (0, y), false) {
-                    self.push(child);
-                    // The parent stays active, under a fresh key.
-                    self.push(parent);
+            // Bridson's loop over the lowest band: a random active point of
+            // it throws its candidates; it stays active until it fails.
+            loop {
+                let window = &self.window;
+                let Some((place, parent)) = self
+                    .queue
+                    .pick(done_at, &mut self.rng, |p| window.prefetch(p))
+                else {
+                    break;
+                };
+                match self.spawn(&parent, (0, y), false) {
+                    Some(child) => self.push(child),
+                    None => self.queue.retire(place),
                 }
             }
             // A connected front reaches every pixel; this only seeds

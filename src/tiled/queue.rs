@@ -30,6 +30,8 @@ pub(crate) struct BandQueue {
     inv_height: f64,
     /// Emptied buckets, kept for their allocations.
     spare: Vec<Vec<[f64; 2]>>,
+    /// The next pick's bucket and index, drawn ahead.
+    next: Option<(u64, usize)>,
 }
 
 impl BandQueue {
@@ -42,6 +44,7 @@ impl BandQueue {
             height,
             inv_height: 1.0 / height,
             spare: Vec::new(),
+            next: None,
         }
     }
 
@@ -78,14 +81,24 @@ impl BandQueue {
     }
 
     /// A random point of the lowest non-empty bucket, if that bucket starts
-    /// below `limit`; removed from the queue.
-    pub(crate) fn pop_below<R: Rng + ?Sized>(
+    /// below `limit`, with where it is (for [`Self::retire`]); the point
+    /// stays queued. Also hands `ahead` the point the next pick will
+    /// probably take, so that its neighbourhood can be fetched meanwhile.
+    ///
+    /// The next pick's index is drawn now, uniform over one more than the
+    /// bucket's length, and kept if the bucket is still the front one and
+    /// the index still below its length (one spawn retires at most one
+    /// point and adds at most one): so it is uniform over the length it
+    /// is used with, as a fresh draw would be (the batch sampler's picks
+    /// ahead argue the same way).
+    pub(crate) fn pick<R: Rng + ?Sized>(
         &mut self,
         limit: f64,
         rng: &mut R,
-    ) -> Option<[f64; 2]> {
+        ahead: impl FnOnce(&[f64; 2]),
+    ) -> Option<(Place, [f64; 2])> {
         loop {
-            let front = self.buckets.front_mut()?;
+            let front = self.buckets.front()?;
             if front.is_empty() {
                 if let Some(empty) = self.buckets.pop_front() {
                     self.spare.push(empty);
@@ -98,8 +111,42 @@ impl BandQueue {
             if start >= limit {
                 return None;
             }
-            let i = below(rng, front.len());
-            return Some(front.swap_remove(i));
+            let len = front.len();
+            let index = match self.next {
+                Some((bucket, i)) if bucket == self.base && i < len => i,
+                _ => below(rng, len),
+            };
+            let next = below(rng, len + 1);
+            self.next = Some((self.base, next));
+            if let Some(p) = front.get(next) {
+                ahead(p);
+            }
+            let point = *front.get(index)?;
+            let place = Place {
+                bucket: self.base,
+                index,
+            };
+            return Some((place, point));
         }
     }
+
+    /// Removes the point at `place`, from [`Self::pick`] (pushes since then
+    /// leave it where it was: they only append, or add buckets).
+    pub(crate) fn retire(&mut self, place: Place) {
+        let at = place.bucket.wrapping_sub(self.base);
+        if let Some(list) = usize::try_from(at)
+            .ok()
+            .and_then(|at| self.buckets.get_mut(at))
+            && place.index < list.len()
+        {
+            list.swap_remove(place.index);
+        }
+    }
+}
+
+/// Where a picked point sits in the queue.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Place {
+    bucket: u64,
+    index: usize,
 }

@@ -30,9 +30,14 @@ pub(crate) struct Slot {
 pub(crate) struct WindowPlan {
     pub(crate) width: usize,
     pub(crate) height: usize,
-    /// Grid cells per pixel side: the cell side is `1 / cells_per_pixel`,
-    /// at most `r / √2`, and cell rows line up with pixel rows.
-    pub(crate) cells_per_pixel: usize,
+    /// Grid cell side, `r/√2` as in the batch grid (cells need not line
+    /// up with pixels: the grid slides by cell rows).
+    pub(crate) side: f64,
+    /// Grid cells across the raster, and cell rows the window spans at
+    /// most.
+    pub(crate) cells_x: usize,
+    pub(crate) cells_y: usize,
+    pub(crate) live_rows: usize,
     /// Pixel rows kept above the current one.
     pub(crate) rows_above: usize,
     /// Pixel rows kept below the current one.
@@ -47,17 +52,11 @@ pub(crate) struct WindowPlan {
 impl WindowPlan {
     /// `None` if a size overflows.
     pub(crate) fn new(width: usize, height: usize, radius: f64) -> Option<Self> {
-        // Cells per pixel: the smallest c with 1/c <= r/√2.
-        let c = (core::f64::consts::SQRT_2 / radius).ceil().max(1.0);
-        if c.is_nan() || c > 65_536.0 {
+        // Cells of side r/√2; more than 65 536 a pixel side is refused.
+        let side = radius * core::f64::consts::FRAC_1_SQRT_2;
+        if side.is_nan() || side < 1.0 / 65_536.0 {
             return None;
         }
-        #[expect(
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss,
-            reason = "1 <= c <= 65536"
-        )]
-        let cells_per_pixel = c as usize;
         let whole = |x: f64| -> Option<usize> {
             if (0.0..=1e9).contains(&x) {
                 #[expect(
@@ -77,18 +76,24 @@ impl WindowPlan {
         // parent lies at most J below its key, and its children 2r below
         // it: 8.25r below the row, plus the row itself.
         let rows_below = (whole((8.0 + super::queue::BUCKET) * radius)? + 1).min(height);
-        let side = 1.0 / c;
+        let cells = |pixels: usize| -> Option<usize> {
+            #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+            let n = (pixels as f64 / side).ceil().max(1.0);
+            whole(n)
+        };
+        let (cells_x, cells_y) = (cells(width)?, cells(height)?);
         // Rounding margin on the cell index, as for the batch grid.
         #[expect(clippy::cast_precision_loss, reason = "a bound, not a count")]
-        let eta = rounding_margin(width.max(height) as f64 * c);
+        let eta = rounding_margin(cells_x.max(cells_y) as f64);
         // Beyond the raster there is nothing to find: the reach never needs
         // to exceed it, which also bounds the stencil for huge radii.
-        let raster_cells = width.max(height).checked_mul(cells_per_pixel)?;
-        let reach = whole(radius / side + eta)?.min(raster_cells);
+        let reach = whole(radius / side + eta)?.min(cells_x.max(cells_y));
         let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
-        let cell_rows = ring_rows.checked_mul(cells_per_pixel)?;
-        height.checked_mul(cells_per_pixel)?;
-        let grid_bytes = RollingGrid::bytes(width.checked_mul(cells_per_pixel)?, cell_rows, reach)?;
+        // The cell rows of `ring_rows` pixel rows, from wherever the first
+        // one starts.
+        #[expect(clippy::cast_precision_loss, reason = "row counts < 2^32")]
+        let live_rows = whole(ring_rows as f64 / side)?.checked_add(2)?;
+        let grid_bytes = RollingGrid::bytes(cells_x, live_rows, reach)?;
         let slot_bytes = width
             .checked_mul(ring_rows)?
             .checked_mul(size_of::<Slot>())?;
@@ -106,7 +111,10 @@ impl WindowPlan {
         Some(Self {
             width,
             height,
-            cells_per_pixel,
+            side,
+            cells_x,
+            cells_y,
+            live_rows,
             rows_above,
             rows_below,
             reach,
@@ -135,13 +143,10 @@ pub(crate) struct Window {
 impl Window {
     /// The window for `plan`, whose sizes [`WindowPlan::new`] checked.
     pub(crate) fn new(plan: WindowPlan, radius: f64) -> Self {
-        let c = plan.cells_per_pixel;
-        #[expect(clippy::cast_precision_loss, reason = "c <= 65536")]
-        let side = 1.0 / c as f64;
         let grid = RollingGrid::new(
-            (plan.width * c, plan.height.saturating_mul(c)),
-            plan.ring_rows() * c,
-            side,
+            (plan.cells_x, plan.cells_y),
+            plan.live_rows,
+            plan.side,
             (radius, plan.reach, plan.eta),
         )
         .unwrap_or_else(RollingGrid::empty);
@@ -169,8 +174,16 @@ impl Window {
             }
             self.top += 1;
         }
-        let c = self.plan.cells_per_pixel;
-        self.grid.slide_to(self.top * c, self.plan.ring_rows() * c);
+        // The first cell row holding any point of pixel row `top` (the
+        // same rounding as a point's cell, which is monotonic).
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            clippy::cast_precision_loss,
+            reason = "a saturating cast of a non-negative row"
+        )]
+        let first = (self.top as f64 / self.plan.side) as usize;
+        self.grid.slide_to(first, self.plan.live_rows);
     }
 
     /// Whether pixel row `y` is inside the window (so it may hold points).
