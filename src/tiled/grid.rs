@@ -121,13 +121,15 @@ impl RollingGrid {
         }
     }
 
-    /// Columns and array rows: the live rows and their padding, doubled so
-    /// that a copy back is needed only once per `live_rows` rows.
+    /// Columns and array rows: the live rows and their padding, and half
+    /// as many again, so that a copy back is needed once per half a
+    /// window of rows: about two rows copied per row of the image, which
+    /// is cheap next to sampling it, where doubling would cost memory
+    /// (16 MB more at 16 384 pixels wide and 4 a pixel).
     fn size(cells_x: usize, live_rows: usize, reach: usize) -> Option<(usize, usize)> {
         let columns = cells_x.checked_add(reach.checked_mul(2)?)?;
-        let rows = live_rows
-            .checked_add(reach.checked_mul(2)?)?
-            .checked_mul(2)?;
+        let padded = live_rows.checked_add(reach.checked_mul(2)?)?;
+        let rows = padded.checked_add(padded / 2 + 1)?;
         Some((columns, rows))
     }
 
@@ -268,6 +270,35 @@ impl RollingGrid {
         let base = self.index(cx, cy);
         for &line in &self.block_lines {
             crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(line));
+        }
+    }
+
+    /// Hands every stored point of the cell rows that cover pixel row `y`
+    /// to `take` (points of the neighbouring pixel rows too: the caller
+    /// filters), row by row, left to right.
+    pub(crate) fn for_each_in_row(&self, y: usize, mut take: impl FnMut(&[f64; 2])) {
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            clippy::cast_precision_loss,
+            reason = "saturating casts of non-negative rows, clamped"
+        )]
+        let (lo, hi) = (
+            ((y as f64 * self.inv_side) as usize).min(self.cells_y - 1),
+            (((y + 1) as f64 * self.inv_side) as usize).min(self.cells_y - 1),
+        );
+        for cy in lo..=hi {
+            // The row's first (padding) cell; `usize::MAX` above the array.
+            let Some(cells) = self
+                .index(0, cy)
+                .checked_sub(self.reach)
+                .and_then(|a| self.cells.get(a..a.checked_add(self.columns)?))
+            else {
+                continue;
+            };
+            for q in cells.iter().filter(|q| q[0] != f64::INFINITY) {
+                take(q);
+            }
         }
     }
 

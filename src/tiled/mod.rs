@@ -220,7 +220,11 @@ impl TiledBuilder {
         };
         let width = usize::try_from(self.width).map_err(|_| too_large(u64::MAX))?;
         let height = usize::try_from(self.height).map_err(|_| too_large(u64::MAX))?;
-        let plan = WindowPlan::new(width, height, radius).ok_or(too_large(u64::MAX))?;
+        // Per-pixel lists only where a pixel's points are kept apart: the
+        // paper's scheme grows each pixel from its own list, exact mode
+        // thins them; the sweep gathers each row from its grid.
+        let lists = self.scheme == Scheme::Paper || self.exact.is_some();
+        let plan = WindowPlan::new(width, height, radius, lists).ok_or(too_large(u64::MAX))?;
         if plan.bytes > self.max_window_bytes {
             return Err(too_large(plan.bytes));
         }
@@ -233,8 +237,11 @@ impl TiledBuilder {
 }
 
 /// One pixel of the stream: its position and its points, in raster
-/// coordinates (`x <= p[0] < x + 1`, `y <= p[1] < y + 1`), in generation
-/// order.
+/// coordinates (`x <= p[0] < x + 1`, `y <= p[1] < y + 1`). The sweep lists
+/// a pixel's points in the order of the background grid's cells (rows of
+/// cells of side `r/√2`, each left to right), the paper's scheme in
+/// generation order, exact mode in elimination order; none of these orders
+/// is part of the contract beyond being fixed for a seed.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Pixel {
     /// Column, from 0 at the left.
@@ -300,7 +307,7 @@ impl Tiled {
             scheme: s.scheme,
             width: self.plan.width,
             height: self.plan.height,
-            rows_below: self.plan.rows_below,
+            lead: (8.0 + queue::BUCKET) * self.radius,
             near: near_offsets(self.radius, self.plan.width.max(self.plan.height)),
             queue: BandQueue::new(self.radius),
             jitter: SWEEP_BAND * self.radius,
@@ -335,7 +342,9 @@ pub struct Pixels<R> {
     scheme: Scheme,
     width: usize,
     height: usize,
-    rows_below: usize,
+    /// How far below the current row's bottom the sweep's children can
+    /// land: `(8 + BUCKET)·r`.
+    lead: f64,
     /// Pixel offsets `(dx, dy)` whose box comes within `2r` of a pixel.
     near: Vec<(isize, isize)>,
     /// Sweep scheme: the active points, by key.
@@ -364,8 +373,12 @@ impl<R: Rng> Pixels<R> {
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
         let (x, y) = self.advance()?;
         points.clear();
-        if let Some(slot) = self.window.slot_mut(x, y) {
-            core::mem::swap(points, &mut slot.points);
+        if self.lists() {
+            if let Some(slot) = self.window.slot_mut(x, y) {
+                core::mem::swap(points, &mut slot.points);
+            }
+        } else {
+            points.extend_from_slice(self.window.pixel_points(x));
         }
         Some((u32::try_from(x).ok()?, u32::try_from(y).ok()?))
     }
@@ -387,15 +400,25 @@ impl<R: Rng> Pixels<R> {
             (_, thinning) if x == 0 => {
                 self.finish_row(y);
                 if let Some(thinning) = thinning {
+                    self.window.fill_slots(y);
+                    self.window.fill_slots(y + 1);
                     let dims = (self.width, self.height);
                     let placed = thinning.thin_row(&mut self.window, y, dims, &mut self.rng);
                     self.top_ups += placed as u64;
+                } else {
+                    self.window.gather_row(y);
                 }
             }
             _ => {}
         }
         self.next += 1;
         Some((x, y))
+    }
+
+    /// Whether the pixels' points come from per-pixel lists (the paper's
+    /// scheme, exact mode) rather than the sweep's gathered rows.
+    fn lists(&self) -> bool {
+        self.scheme == Scheme::Paper || self.thinning.is_some()
     }
 
     /// Exact mode: how many points so far were top-up darts, placed in
@@ -500,8 +523,15 @@ impl<R: Rng> Pixels<R> {
             let (x, y) = (current.0 as f64, current.1 as f64);
             (x, x + 1.0, y, y + 1.0)
         } else {
-            let last = (current.1 + self.rows_below + 1).min(self.height);
-            (0.0, self.width as f64, current.1 as f64, last as f64)
+            // No child lands farther below the row's top than this (see
+            // `WindowPlan::new`); the window's grid holds no more.
+            let last = (current.1 + 1) as f64 + self.lead;
+            (
+                0.0,
+                self.width as f64,
+                current.1 as f64,
+                last.min(self.height as f64),
+            )
         };
         let radius = self.reach / 2.0;
         let ahead = self.candidates.reads_ahead();
@@ -580,7 +610,7 @@ impl<R: Rng> Pixels<R> {
     /// gets a seed.
     fn anything_near(&self, x: usize, y: usize) -> bool {
         self.near_pixels(x, y)
-            .any(|(qx, qy)| self.window.slot(qx, qy).count > 0)
+            .any(|(qx, qy)| self.window.count(qx, qy) > 0)
     }
 
     /// Pixels of the window within `2r` of `(x, y)`.
@@ -618,18 +648,19 @@ impl<R: Rng> Iterator for Pixels<R> {
 
     fn next(&mut self) -> Option<Pixel> {
         let (x, y) = self.advance()?;
-        // A copy of exactly the pixel's size, and the slot keeps its
-        // allocation: one allocation a pixel, where handing the slot's
-        // vector out would cost the slot two or three as it regrows.
-        let points = self
-            .window
-            .slot_mut(x, y)
-            .map(|slot| {
-                let points = slot.points.clone();
-                slot.points.clear();
-                points
-            })
-            .unwrap_or_default();
+        // A copy of exactly the pixel's size; a slot keeps its allocation.
+        let points = if self.lists() {
+            self.window
+                .slot_mut(x, y)
+                .map(|slot| {
+                    let points = slot.points.clone();
+                    slot.points.clear();
+                    points
+                })
+                .unwrap_or_default()
+        } else {
+            self.window.pixel_points(x).to_vec()
+        };
         Some(Pixel {
             x: u32::try_from(x).ok()?,
             y: u32::try_from(y).ok()?,

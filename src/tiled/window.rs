@@ -1,7 +1,11 @@
 //! The rolling window of the streaming mode: the few pixel rows around the
-//! current one, with their points and active points in a ring buffer of
-//! pixel slots that is reused as the scan moves down the image, and a
-//! background grid whose rows slide with it (`tiled/grid.rs`).
+//! current one, in ring buffers reused as the scan moves down the image (a
+//! count per pixel and, for the paper's scheme and exact mode, per-pixel
+//! lists), and a background grid whose rows slide with it
+//! (`tiled/grid.rs`). The sweep keeps its points in the grid only and
+//! gathers a row's points from it when the row is emitted: per-pixel lists
+//! cost a cache miss and a growing allocation per point, and at 16 384
+//! pixels wide about 25 MB.
 //!
 //! Memory is proportional to the image width times the window height
 //! (`ceil(r)` rows above the current row for the minimum-distance checks,
@@ -12,14 +16,13 @@
 use super::grid::RollingGrid;
 use crate::grid::rounding_margin;
 
-/// Points and active points of one pixel, in generation order.
+/// Points and active points of one pixel (the paper's scheme and exact
+/// mode).
 #[derive(Debug, Default, Clone)]
 pub(crate) struct Slot {
     /// Points not yet handed out (emptied when the pixel is emitted).
     pub(crate) points: Vec<[f64; 2]>,
     pub(crate) active: Vec<[f64; 2]>,
-    /// Points ever stored in the pixel, emitted or not.
-    pub(crate) count: usize,
     /// Exact mode: the pixel's final points, kept after emission for the
     /// next rows' elimination weights.
     pub(crate) kept: Vec<[f64; 2]>,
@@ -47,11 +50,14 @@ pub(crate) struct WindowPlan {
     /// Rounding margin on cell indices, in cells.
     pub(crate) eta: f64,
     pub(crate) bytes: u64,
+    pub(crate) lists: bool,
 }
 
 impl WindowPlan {
     /// `None` if a size overflows.
-    pub(crate) fn new(width: usize, height: usize, radius: f64) -> Option<Self> {
+    /// `lists`: whether the window keeps per-pixel lists (the paper's
+    /// scheme and exact mode).
+    pub(crate) fn new(width: usize, height: usize, radius: f64, lists: bool) -> Option<Self> {
         // Cells of side r/√2; more than 65 536 a pixel side is refused.
         let side = radius * core::f64::consts::FRAC_1_SQRT_2;
         if side.is_nan() || side < 1.0 / 65_536.0 {
@@ -89,14 +95,16 @@ impl WindowPlan {
         // to exceed it, which also bounds the stencil for huge radii.
         let reach = whole(radius / side + eta)?.min(cells_x.max(cells_y));
         let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
-        // The cell rows of `ring_rows` pixel rows, from wherever the first
-        // one starts.
-        #[expect(clippy::cast_precision_loss, reason = "row counts < 2^32")]
-        let live_rows = whole(ring_rows as f64 / side)?.checked_add(2)?;
+        // The grid holds only the rows the searches can reach, not whole
+        // pixel rows: from `r` above the current row (its first cell row,
+        // less one for rounding) to the lowest row a child can land in,
+        // `1 + (8 + BUCKET)·r` below the current row's top, plus the reach.
+        let live_rows = whole((1.0 + (9.0 + super::queue::BUCKET) * radius) / side)?
+            .checked_add(3)?
+            .min(cells_y.checked_add(1)?);
         let grid_bytes = RollingGrid::bytes(cells_x, live_rows, reach)?;
-        let slot_bytes = width
-            .checked_mul(ring_rows)?
-            .checked_mul(size_of::<Slot>())?;
+        let per_pixel = size_of::<u32>() + if lists { size_of::<Slot>() } else { 0 };
+        let slot_bytes = width.checked_mul(ring_rows)?.checked_mul(per_pixel)?;
         // The table of nearby pixels (a square of its reach) is allocated
         // too; a huge radius on a wide raster must be an error, not an
         // abort.
@@ -120,6 +128,7 @@ impl WindowPlan {
             reach,
             eta,
             bytes,
+            lists,
         })
     }
 
@@ -132,17 +141,25 @@ impl WindowPlan {
 #[derive(Debug)]
 pub(crate) struct Window {
     plan: WindowPlan,
-    /// `ring_rows × width` pixel slots; pixel row `y` lives in ring row
-    /// `y % ring_rows`.
+    /// `ring_rows × width` pixel slots, or none for the plain sweep;
+    /// pixel row `y` lives in ring row `y % ring_rows`.
     slots: Vec<Slot>,
+    /// Points ever stored in each pixel, emitted or not, in the same ring.
+    counts: Vec<u32>,
     grid: RollingGrid,
+    /// The sweep's gathered row: its points by pixel, pixel `x`'s at
+    /// `row[starts[x]..starts[x + 1]]`.
+    row: Vec<[f64; 2]>,
+    starts: Vec<usize>,
     /// The lowest pixel row still held (rows above it were dropped).
     top: usize,
+    radius: f64,
 }
 
 impl Window {
     /// The window for `plan`, whose sizes [`WindowPlan::new`] checked.
     pub(crate) fn new(plan: WindowPlan, radius: f64) -> Self {
+        let lists = plan.lists;
         let grid = RollingGrid::new(
             (plan.cells_x, plan.cells_y),
             plan.live_rows,
@@ -150,11 +167,20 @@ impl Window {
             (radius, plan.reach, plan.eta),
         )
         .unwrap_or_else(RollingGrid::empty);
+        let pixels = plan.ring_rows() * plan.width;
         Self {
             plan,
-            slots: vec![Slot::default(); plan.ring_rows() * plan.width],
+            slots: if lists {
+                vec![Slot::default(); pixels]
+            } else {
+                Vec::new()
+            },
+            counts: vec![0; pixels],
             grid,
+            row: Vec::new(),
+            starts: Vec::new(),
             top: 0,
+            radius,
         }
     }
 
@@ -170,20 +196,24 @@ impl Window {
                 slot.points.clear();
                 slot.active.clear();
                 slot.kept.clear();
-                slot.count = 0;
+            }
+            if let Some(counts) = self.counts.get_mut(ring * width..(ring + 1) * width) {
+                counts.fill(0);
             }
             self.top += 1;
         }
-        // The first cell row holding any point of pixel row `top` (the
-        // same rounding as a point's cell, which is monotonic).
+        // The first cell row that can hold a point within `r` of row
+        // `row` (the same rounding as a point's cell, which is monotonic,
+        // less one row for the margin).
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,
             clippy::cast_precision_loss,
             reason = "a saturating cast of a non-negative row"
         )]
-        let first = (self.top as f64 / self.plan.side) as usize;
-        self.grid.slide_to(first, self.plan.live_rows);
+        let first = ((row as f64 - self.radius).max(0.0) / self.plan.side) as usize;
+        self.grid
+            .slide_to(first.saturating_sub(1), self.plan.live_rows);
     }
 
     /// Whether pixel row `y` is inside the window (so it may hold points).
@@ -197,7 +227,6 @@ impl Window {
         static NONE: Slot = Slot {
             points: Vec::new(),
             active: Vec::new(),
-            count: 0,
             kept: Vec::new(),
         };
         self.slots.get(self.slot_index(x, y)).unwrap_or(&NONE)
@@ -207,6 +236,73 @@ impl Window {
     pub(crate) fn slot_mut(&mut self, x: usize, y: usize) -> Option<&mut Slot> {
         let index = self.slot_index(x, y);
         self.slots.get_mut(index)
+    }
+
+    /// Points ever stored in pixel `(x, y)` (0 outside the window).
+    pub(crate) fn count(&self, x: usize, y: usize) -> u32 {
+        self.counts.get(self.slot_index(x, y)).copied().unwrap_or(0)
+    }
+
+    /// Gathers pixel row `y`'s points from the grid, by pixel, for
+    /// [`Self::pixel_points`]: a counting sort over the row's cells, in
+    /// cell order within each pixel.
+    pub(crate) fn gather_row(&mut self, y: usize) {
+        let width = self.plan.width;
+        self.starts.clear();
+        self.starts.push(0);
+        let mut total = 0;
+        for x in 0..width {
+            total += self.count(x, y) as usize;
+            self.starts.push(total);
+        }
+        self.row.clear();
+        self.row.resize(total, [f64::NAN; 2]);
+        let mut next: Vec<usize> = self.starts.clone();
+        let (row, grid) = (&mut self.row, &self.grid);
+        grid.for_each_in_row(y, |p| {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "a point of the raster"
+            )]
+            let (px, py) = (p[0] as usize, p[1] as usize);
+            if py == y
+                && let Some(at) = next.get_mut(px)
+                && let Some(slot) = row.get_mut(*at)
+            {
+                *slot = *p;
+                *at += 1;
+            }
+        });
+    }
+
+    /// Pixel `x`'s points of the row last gathered.
+    pub(crate) fn pixel_points(&self, x: usize) -> &[[f64; 2]] {
+        match (self.starts.get(x), self.starts.get(x + 1)) {
+            (Some(&a), Some(&b)) => self.row.get(a..b).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+
+    /// Exact mode: fills pixel row `y`'s lists from the grid (replacing
+    /// what they held).
+    pub(crate) fn fill_slots(&mut self, y: usize) {
+        if !self.holds_row(y) {
+            return;
+        }
+        self.gather_row(y);
+        for x in 0..self.plan.width {
+            let index = self.slot_index(x, y);
+            if let (Some(slot), Some(&a), Some(&b)) = (
+                self.slots.get_mut(index),
+                self.starts.get(x),
+                self.starts.get(x + 1),
+            ) {
+                slot.points.clear();
+                slot.points
+                    .extend_from_slice(self.row.get(a..b).unwrap_or(&[]));
+            }
+        }
     }
 
     fn slot_index(&self, x: usize, y: usize) -> usize {
@@ -236,23 +332,23 @@ impl Window {
         self.grid.seed(p, limit, take);
     }
 
-    /// Stores `p` in the grid and in its pixel's points, and in its
-    /// pixel's active list if `active` (the paper's scheme keeps one per
-    /// pixel; the sweep's queue holds its own). Returns `false` (storing nothing) if its cell is taken, which only
-    /// rounding can cause; the caller treats it as a failed attempt.
-    pub(crate) fn insert(&mut self, p: [f64; 2], pixel: (usize, usize), active: bool) -> bool {
+    /// Stores `p` in the grid, counts it in its pixel, and with `lists`
+    /// (the paper's scheme) adds it to its pixel's points and active
+    /// points. Returns `false` (storing nothing) if its cell is taken,
+    /// which only rounding can cause; the caller treats it as a failed
+    /// attempt.
+    pub(crate) fn insert(&mut self, p: [f64; 2], pixel: (usize, usize), lists: bool) -> bool {
         let index = self.slot_index(pixel.0, pixel.1);
-        if index >= self.slots.len() || !self.grid.insert(p) {
+        if index >= self.counts.len() || !self.grid.insert(p) {
             return false;
         }
-        let Some(slot) = self.slots.get_mut(index) else {
-            return false;
-        };
-        slot.points.push(p);
-        if active {
+        if let Some(count) = self.counts.get_mut(index) {
+            *count = count.saturating_add(1);
+        }
+        if lists && let Some(slot) = self.slots.get_mut(index) {
+            slot.points.push(p);
             slot.active.push(p);
         }
-        slot.count += 1;
         true
     }
 }
