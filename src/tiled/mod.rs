@@ -5,13 +5,17 @@
 //!
 //! # Two schemes
 //! - [`Scheme::Sweep`] (default): one Bridson process over the whole image,
-//!   blind to pixels. Active points wait in a priority queue keyed by
-//!   `y + u·J` (`u` uniform, `J = 4r`), and the process always works the
-//!   smallest key: `k` candidates around it, the first valid one kept. The
-//!   work front thus sweeps down the image in a band about `J` tall, in
-//!   random order inside the band. Row `y` is complete once the smallest
-//!   key passes `y + 1 + 2r + J` (no active point left can reach it); its
-//!   pixels are then emitted. Pausing to emit changes nothing in the order
+//!   blind to pixels. Active points wait in a queue keyed by `y + u·J`
+//!   (`u` uniform, `J = 4r`), cut into buckets `r/4` tall
+//!   (`tiled/queue.rs`), and the process works a random point of the lowest
+//!   bucket: `k` candidates around it, the first valid one kept, the point
+//!   retired when none is. That is Bridson's loop on the lowest band of
+//!   keys, with the batch sampler's machinery (conflict cache, offsets
+//!   drawn ahead, the next pick's cells prefetched). The work front thus
+//!   sweeps down the image in a band about `J` tall, in random order inside
+//!   the band. Row `y` is complete once the lowest bucket starts past
+//!   `y + 1 + 2r + J` (no active point left can reach it); its pixels are
+//!   then gathered from the grid and emitted. Pausing to emit changes nothing in the order
 //!   of the work, so pixel and row borders leave no trace in the set.
 //!   Finishing pixel by pixel instead would stop the front `2r` below each
 //!   row and leave a seam there (`docs/performance-journal.md`).
@@ -192,7 +196,7 @@ impl TiledBuilder {
     /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS); [`Error::WindowTooLarge`] if
     /// the window exceeds its budget.
     /// The window's row and cell counts are bounded too, so a radius above
-    /// about `1.25e8` pixels, or below about `2.2e-5` (more than 65 536 cells
+    /// about `1.2e8` pixels, or below about `2.2e-5` (more than 65 536 cells
     /// per pixel), gives [`Error::WindowTooLarge`] with `needed: u64::MAX`
     /// whatever the budget, even on a 1 × 1 raster.
     pub fn build(self) -> Result<Tiled, Error> {
@@ -288,9 +292,10 @@ impl Tiled {
         self.settings.scheme
     }
 
-    /// Bytes of the rolling window (grid and per-pixel lists, without the
-    /// points themselves): proportional to the width, independent of the
-    /// height.
+    /// Bytes of the rolling window (the grid, which holds the sweep's
+    /// points, per-pixel counts, and for the paper's scheme and exact mode
+    /// the per-pixel lists' headers, not their points): proportional to
+    /// the width, independent of the height.
     pub fn window_bytes(&self) -> u64 {
         self.plan.bytes
     }
