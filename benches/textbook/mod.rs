@@ -121,9 +121,9 @@ impl<const N: usize> Layout<N> {
     )]
     fn cell(&self, p: &[f64; N]) -> usize {
         let mut index = 0;
-        for axis in 0..N {
-            let c = ((p[axis] * self.inv_side) as usize).min(self.counts[axis] - 1);
-            index += (c + self.reach) * self.strides[axis];
+        for ((&x, &count), &stride) in p.iter().zip(&self.counts).zip(&self.strides) {
+            let c = ((x * self.inv_side) as usize).min(count - 1);
+            index += (c + self.reach) * stride;
         }
         index
     }
