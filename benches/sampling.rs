@@ -41,14 +41,16 @@ fn group<const N: usize>(c: &mut Criterion, name: &str, radius: f64, expected_po
         2 => {
             g.bench_function(id("textbook"), |b| {
                 b.iter(|| {
-                    textbook::textbook_2d(1.0, 1.0, black_box(radius), K, &mut seeded_rng(1)).len()
+                    textbook::textbook([1.0; 2], black_box(radius), K, &mut seeded_rng(1))
+                        .map(|p| p.len())
                 });
             });
         }
         3 => {
             g.bench_function(id("textbook"), |b| {
                 b.iter(|| {
-                    textbook::textbook_3d([1.0; 3], black_box(radius), K, &mut seeded_rng(1)).len()
+                    textbook::textbook([1.0; 3], black_box(radius), K, &mut seeded_rng(1))
+                        .map(|p| p.len())
                 });
             });
         }

@@ -130,11 +130,9 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
     let count = match case.what {
         What::Textbook => {
             let mut rng = seeded_rng(SEED);
-            match N {
-                2 => textbook::textbook_2d(1.0, 1.0, case.radius, K, &mut rng).len(),
-                3 => textbook::textbook_3d([1.0; 3], case.radius, K, &mut rng).len(),
-                _ => return Err("textbook baseline is 2-D and 3-D only".into()),
-            }
+            textbook::textbook([1.0; N], case.radius, K, &mut rng)
+                .ok_or("the textbook's grid is too large")?
+                .len()
         }
         What::Library(candidates, layout) => {
             let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;

@@ -1,155 +1,201 @@
-//! A straightforward textbook Bridson, kept as the speed baseline: a flat
-//! `u32` grid of point indices (cell side `r/√N`), candidates by rejection
-//! from the cube around the active point, a random active point per round
-//! and swap-remove retirement, neighbours searched over the `±ceil(√N)`
-//! block clamped to the grid, early exit on the first conflict.
+//! The textbook Bridson kept as the speed baseline, written to the recipe of
+//! the yardstick in `../shared/baseline` (its `src/reference.rs`), so that
+//! "× the textbook" means "× a careful textbook Bridson":
 //!
-//! It uses the same generator and the same `k` as the library, so a ratio of
-//! points/s at equal ρ compares the implementations, not the parameters.
+//! - candidates uniform in the annulus `r..2r` by rejection from the cube of
+//!   side `4r`, each coordinate `(u·4 − 2)·r` with `u` from the top 53 bits
+//!   of one `u64`;
+//! - a flat grid of `u32` point indices, cell side `r/√N`, padded by the
+//!   reach `m = ceil(√N)` cells on every side so that no neighbour lookup
+//!   needs a bounds test of its own;
+//! - the neighbour cells, only those whose nearest face is closer than `r`
+//!   (21 of the 5×5 block in 2-D), scanned in memory order with an exit on
+//!   the first conflict (as runs along axis 0, one slice per row);
+//! - the active point picked by a multiply-shift of one `u64`, retired by
+//!   swap-remove after `k` failures.
+//!
+//! Unlike the yardstick it has no `unsafe` (the padded grid keeps every index
+//! in range; the bounds checks stay) and it takes the caller's generator.
+//! It is a baseline, not a sampler: the reach `ceil(√N)` cells carries no
+//! margin for rounding, and the grid is sized without a budget (the callers
+//! pass benchmark sizes; `textbook` refuses a grid over `MAX_CELLS`).
 
-use rand::{Rng, RngExt};
+use rand::Rng;
 
 const EMPTY: u32 = u32::MAX;
 
-#[expect(
-    clippy::cast_possible_truncation,
-    clippy::cast_sign_loss,
-    reason = "coordinates are inside the box, cell indices small"
-)]
-fn cell(x: f64, inv: f64, n: usize) -> usize {
-    ((x * inv) as usize).min(n - 1)
+/// The largest padded grid `textbook` allocates (1 GiB of `u32`).
+pub(crate) const MAX_CELLS: usize = 1 << 28;
+
+/// A uniform `f64` in `[0, 1)` from the top 53 bits of one draw.
+#[expect(clippy::cast_precision_loss, reason = "53 bits convert exactly")]
+fn unit<R: Rng>(rng: &mut R) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// Textbook Bridson in the box `[0, w) × [0, h)`.
-pub(crate) fn textbook_2d<R: Rng>(w: f64, h: f64, r: f64, k: u32, rng: &mut R) -> Vec<[f64; 2]> {
-    let side = r / 2f64.sqrt();
-    let inv = 1.0 / side;
-    let (nx, ny) = (cell_count(w, side), cell_count(h, side));
-    let mut grid = vec![EMPTY; nx * ny];
-    let mut points: Vec<[f64; 2]> = Vec::new();
-    let mut active: Vec<u32> = Vec::new();
-    let r2 = r * r;
-    let first = [rng.random::<f64>() * w, rng.random::<f64>() * h];
-    grid[cell(first[1], inv, ny) * nx + cell(first[0], inv, nx)] = 0;
+/// A uniform index in `0..n` by multiply-shift (bias below `n / 2⁶⁴`).
+#[expect(
+    clippy::cast_possible_truncation,
+    reason = "the product's high word is below n"
+)]
+fn below<R: Rng>(rng: &mut R, n: usize) -> usize {
+    ((u128::from(rng.next_u64()) * n as u128) >> 64) as usize
+}
+
+/// The padded grid: strides, cell counts and the neighbour offsets.
+struct Layout<const N: usize> {
+    inv_side: f64,
+    reach: usize,
+    counts: [usize; N],
+    strides: [usize; N],
+    total: usize,
+    /// The neighbour cells as runs along axis 0: (offset of the run's first
+    /// cell from the home cell, its length), in memory order.
+    runs: Vec<(isize, usize)>,
+}
+
+impl<const N: usize> Layout<N> {
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::cast_precision_loss,
+        clippy::cast_possible_wrap,
+        reason = "benchmark sizes: a few cells per axis up to MAX_CELLS in all"
+    )]
+    fn new(extent: [f64; N], r: f64) -> Option<Self> {
+        let root_n = (N as f64).sqrt();
+        let side = r / root_n;
+        let reach = root_n.ceil() as usize;
+        let counts = extent.map(|e| ((e / side).ceil() as usize).max(1));
+        let mut strides = [0; N];
+        let mut total = 1usize;
+        for (stride, count) in strides.iter_mut().zip(counts) {
+            *stride = total;
+            total = total.checked_mul(count.checked_add(2 * reach)?)?;
+        }
+        if total > MAX_CELLS {
+            return None;
+        }
+        // Every offset in the (2m+1)^N block whose nearest face lies closer
+        // than r, in memory order (axis 0 fastest).
+        let width = 2 * reach + 1;
+        let block = width.checked_pow(u32::try_from(N).ok()?)?;
+        // Axis 0 runs fastest and its cells are adjacent in memory, so the
+        // kept cells of each row form one run: one slice, one bounds check.
+        let mut runs: Vec<(isize, usize)> = Vec::new();
+        let mut previous = None;
+        for code in 0..block {
+            let (mut rest, mut linear, mut gap_squared) = (code, 0isize, 0.0);
+            for stride in strides {
+                let d = (rest % width) as isize - reach as isize;
+                rest /= width;
+                linear += d * stride as isize;
+                let gap = (d.unsigned_abs().saturating_sub(1)) as f64 * side;
+                gap_squared += gap * gap;
+            }
+            if gap_squared < r * r {
+                match runs.last_mut() {
+                    Some((_, length)) if previous == Some(code - 1) && code % width != 0 => {
+                        *length += 1;
+                    }
+                    _ => runs.push((linear, 1)),
+                }
+                previous = Some(code);
+            }
+        }
+        Some(Self {
+            inv_side: 1.0 / side,
+            reach,
+            counts,
+            strides,
+            total,
+            runs,
+        })
+    }
+
+    /// The padded cell of a point inside the box.
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "coordinates are inside the box"
+    )]
+    fn cell(&self, p: &[f64; N]) -> usize {
+        let mut index = 0;
+        for ((&x, &count), &stride) in p.iter().zip(&self.counts).zip(&self.strides) {
+            let c = ((x * self.inv_side) as usize).min(count - 1);
+            index += (c + self.reach) * stride;
+        }
+        index
+    }
+}
+
+/// Textbook Bridson in the box `[0, extent)`; `None` if the padded grid
+/// would hold more than `MAX_CELLS` cells.
+pub(crate) fn textbook<const N: usize, R: Rng>(
+    extent: [f64; N],
+    r: f64,
+    k: u32,
+    rng: &mut R,
+) -> Option<Vec<[f64; N]>> {
+    let grid = Layout::new(extent, r)?;
+    let mut cells = vec![EMPTY; grid.total];
+    // Room for a typical set up front, as the yardstick does.
+    let volume: f64 = extent.iter().product();
+    let expected = volume / (0..N).fold(1.0, |p, _| p * r) * 0.8;
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "a capacity hint, at most MAX_CELLS"
+    )]
+    let mut points: Vec<[f64; N]> = Vec::with_capacity((expected as usize).min(MAX_CELLS) + 16);
+    let mut active: Vec<u32> = Vec::with_capacity(1024);
+    let r_squared = r * r;
+    let first: [f64; N] = extent.map(|e| unit(rng) * e);
+    cells[grid.cell(&first)] = 0;
     points.push(first);
     active.push(0);
     while !active.is_empty() {
-        let i = rng.random_range(0..active.len());
-        let p = points[active[i] as usize];
-        let mut found = false;
+        let slot = below(rng, active.len());
+        let centre = points[active[slot] as usize];
+        let mut placed = false;
         for _ in 0..k {
-            let c = loop {
-                let d = [
-                    (rng.random::<f64>() * 2.0 - 1.0) * 2.0 * r,
-                    (rng.random::<f64>() * 2.0 - 1.0) * 2.0 * r,
-                ];
-                let d2 = d[0] * d[0] + d[1] * d[1];
-                if d2 >= r2 && d2 < 4.0 * r2 {
-                    break [p[0] + d[0], p[1] + d[1]];
+            let candidate = loop {
+                let offset: [f64; N] = core::array::from_fn(|_| (unit(rng) * 4.0 - 2.0) * r);
+                let d_squared: f64 = offset.iter().map(|d| d * d).sum();
+                if d_squared >= r_squared && d_squared < 4.0 * r_squared {
+                    break core::array::from_fn(|a| centre[a] + offset[a]);
                 }
             };
-            if !(c[0] >= 0.0 && c[0] < w && c[1] >= 0.0 && c[1] < h) {
+            if !(0..N).all(|a| candidate[a] >= 0.0 && candidate[a] < extent[a]) {
                 continue;
             }
-            let (cx, cy) = (cell(c[0], inv, nx), cell(c[1], inv, ny));
-            let mut ok = true;
-            'search: for y in cy.saturating_sub(2)..=(cy + 2).min(ny - 1) {
-                for x in cx.saturating_sub(2)..=(cx + 2).min(nx - 1) {
-                    let j = grid[y * nx + x];
-                    if j != EMPTY {
-                        let q = points[j as usize];
-                        let (dx, dy) = (q[0] - c[0], q[1] - c[1]);
-                        if dx * dx + dy * dy < r2 {
-                            ok = false;
-                            break 'search;
+            let home = grid.cell(&candidate);
+            let clear = grid.runs.iter().all(|&(offset, length)| {
+                let first = home.wrapping_add_signed(offset);
+                cells[first..first + length].iter().all(|&j| {
+                    j == EMPTY || {
+                        let q = &points[j as usize];
+                        let mut d_squared = 0.0;
+                        for a in 0..N {
+                            let d = q[a] - candidate[a];
+                            d_squared += d * d;
                         }
+                        d_squared >= r_squared
                     }
-                }
-            }
-            if ok {
-                let index = u32::try_from(points.len()).expect("fewer than 2^32 points");
-                grid[cy * nx + cx] = index;
-                points.push(c);
+                })
+            });
+            if clear {
+                let index = u32::try_from(points.len()).ok()?;
+                cells[home] = index;
+                points.push(candidate);
                 active.push(index);
-                found = true;
+                placed = true;
                 break;
             }
         }
-        if !found {
-            active.swap_remove(i);
+        if !placed {
+            active.swap_remove(slot);
         }
     }
-    points
-}
-
-/// Textbook Bridson in the box `[0, w) × [0, h) × [0, d)`.
-pub(crate) fn textbook_3d<R: Rng>(extent: [f64; 3], r: f64, k: u32, rng: &mut R) -> Vec<[f64; 3]> {
-    let side = r / 3f64.sqrt();
-    let inv = 1.0 / side;
-    let n = extent.map(|e| cell_count(e, side));
-    let mut grid = vec![EMPTY; n[0] * n[1] * n[2]];
-    let mut points: Vec<[f64; 3]> = Vec::new();
-    let mut active: Vec<u32> = Vec::new();
-    let r2 = r * r;
-    let index_of = |c: [usize; 3]| (c[2] * n[1] + c[1]) * n[0] + c[0];
-    let cell_of = |p: &[f64; 3]| [0, 1, 2].map(|a| cell(p[a], inv, n[a]));
-    let first = extent.map(|e| rng.random::<f64>() * e);
-    grid[index_of(cell_of(&first))] = 0;
-    points.push(first);
-    active.push(0);
-    while !active.is_empty() {
-        let i = rng.random_range(0..active.len());
-        let p = points[active[i] as usize];
-        let mut found = false;
-        for _ in 0..k {
-            let c = loop {
-                let d = [0, 1, 2].map(|_| (rng.random::<f64>() * 2.0 - 1.0) * 2.0 * r);
-                let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if d2 >= r2 && d2 < 4.0 * r2 {
-                    break [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
-                }
-            };
-            if !(0..3).all(|a| c[a] >= 0.0 && c[a] < extent[a]) {
-                continue;
-            }
-            let cc = cell_of(&c);
-            let mut ok = true;
-            'search: for z in cc[2].saturating_sub(2)..=(cc[2] + 2).min(n[2] - 1) {
-                for y in cc[1].saturating_sub(2)..=(cc[1] + 2).min(n[1] - 1) {
-                    for x in cc[0].saturating_sub(2)..=(cc[0] + 2).min(n[0] - 1) {
-                        let j = grid[index_of([x, y, z])];
-                        if j != EMPTY {
-                            let q = points[j as usize];
-                            let (dx, dy, dz) = (q[0] - c[0], q[1] - c[1], q[2] - c[2]);
-                            if dx * dx + dy * dy + dz * dz < r2 {
-                                ok = false;
-                                break 'search;
-                            }
-                        }
-                    }
-                }
-            }
-            if ok {
-                let index = u32::try_from(points.len()).expect("fewer than 2^32 points");
-                grid[index_of(cc)] = index;
-                points.push(c);
-                active.push(index);
-                found = true;
-                break;
-            }
-        }
-        if !found {
-            active.swap_remove(i);
-        }
-    }
-    points
-}
-
-#[expect(
-    clippy::cast_possible_truncation,
-    clippy::cast_sign_loss,
-    reason = "benchmark sizes"
-)]
-fn cell_count(extent: f64, side: f64) -> usize {
-    ((extent / side).ceil() as usize).max(1)
+    Some(points)
 }
