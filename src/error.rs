@@ -41,6 +41,10 @@ pub enum Error {
         /// The largest `k` accepted.
         max: u32,
     },
+    /// Occurs when a point cap ([`Builder::max_points`](crate::Builder::max_points))
+    /// is negative: only an `i32`, the type of an untyped integer literal,
+    /// can be.
+    InvalidPointCount,
     /// Occurs when the box spans more than 2⁴⁰ radii on some axis. Cell
     /// indices that large lose the precision the exact search relies on, so
     /// neither a point cap nor a larger budget helps: grow the radius or
@@ -144,6 +148,7 @@ impl fmt::Display for Error {
             Self::TooManyAttempts { max } => {
                 write!(f, "the number of attempts k must be at most {max}")
             }
+            Self::InvalidPointCount => f.write_str("a point count or cap must not be negative"),
             Self::BoxTooWide { axis } => write!(
                 f,
                 "the box spans more than 2^40 radii on axis {axis}: grow the radius or shrink the box"

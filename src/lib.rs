@@ -29,6 +29,63 @@
 //! # Ok::<(), bridson::Error>(())
 //! ```
 //!
+//! # Which rand
+//! The crate is built on rand **0.10** (`rand_core` 0.10):
+//! [`PoissonDisk::iter`] takes any generator implementing that version's
+//! `Rng`, and [`rand`](mod@rand) re-exports that version so the names
+//! match. A generator from another rand version, such as rand 0.9's
+//! `StdRng`, implements that version's traits instead, and the compiler
+//! says so obliquely ("the trait `DerefMut` is not implemented for
+//! `StdRng`", from rand 0.10's impl for `&mut` generators). Two ways out,
+//! shown with rand 0.9 (named `rand_09` in this crate's tests; `rand` in
+//! your project):
+//!
+//! ## Example: seeding from a generator of another rand version
+//! ```
+//! use bridson::{Domain, PoissonDisk2};
+//! use rand_09::{Rng as _, SeedableRng as _};
+//! let mut my_rng = rand_09::rngs::SmallRng::seed_from_u64(5);
+//! let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.1)?;
+//! // One u64 from your generator seeds the crate's own (`DefaultRng`):
+//! // the points follow from your generator's state, on every platform.
+//! let seed: u64 = my_rng.random();
+//! let points = sampler.generate_seeded(seed)?;
+//! assert!(points.len() > 50);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! ## Example: drawing from a generator of another rand version
+//! A newtype that implements rand 0.10's `TryRng` (infallibly) lends the
+//! sampler your generator's stream itself:
+//! ```
+//! use bridson::rand::TryRng;
+//! use bridson::{Domain, PoissonDisk2};
+//! use core::convert::Infallible;
+//! use rand_09::SeedableRng as _;
+//!
+//! struct Rand09<R>(R);
+//!
+//! impl<R: rand_09::RngCore> TryRng for Rand09<R> {
+//!     type Error = Infallible;
+//!     fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+//!         Ok(self.0.next_u32())
+//!     }
+//!     fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+//!         Ok(self.0.next_u64())
+//!     }
+//!     fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+//!         self.0.fill_bytes(dst);
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let mut my_rng = Rand09(rand_09::rngs::SmallRng::seed_from_u64(5));
+//! let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.1)?;
+//! let points: Vec<[f64; 2]> = sampler.iter(&mut my_rng).collect();
+//! assert!(points.len() > 50);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
 //! # Guarantees
 //! For every sampler that [`PoissonDisk::new`] accepts:
 //! 1. No two points are closer than `r`: for every pair,
@@ -50,7 +107,7 @@
 //! # Limits
 //! What each awkward input gives. Errors come from [`Domain::new`] (box) or
 //! [`Builder::build`] (everything else), checked in this order: dimension,
-//! box, radius, attempts, grid; the budget is then checked as the run
+//! box, radius, attempts, point cap, grid; the budget is then checked as the run
 //! grows. Each row is a test in `tests/invalid_input.rs` or
 //! `tests/memory_budget.rs`; the fuzz targets in `fuzz/` check the rest.
 //!
@@ -68,6 +125,7 @@
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
 //! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Iter::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
 //! | [`Builder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Iter::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
+//! | point cap negative (`max_points(-1)`: only an `i32` literal can be) | [`Error::InvalidPointCount`] |
 //! | `k = 0` | [`Error::ZeroAttempts`] |
 //! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
 //! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
@@ -140,6 +198,7 @@ mod tiled;
 // Core: the sampler, where its candidates fall, its per-pick cache.
 mod candidates;
 mod conflict_cache;
+mod count;
 mod sampler;
 // The background grid.
 mod grid;
@@ -156,6 +215,7 @@ mod serde_array;
 mod vector;
 
 pub use crate::candidates::Candidates;
+pub use crate::count::PointCap;
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
@@ -169,6 +229,18 @@ pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
 };
 pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
+/// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and
+/// [`Tiled::pixels`] take, re-exported so that `bridson::rand::Rng` always
+/// names the right trait whatever rand your project uses (see "Which rand"
+/// in the crate docs).
+///
+/// It is rand with its default features off, as this crate needs it: the
+/// traits (`Rng`, `TryRng`, `SeedableRng`, `RngExt`), `distr`, `seq` and
+/// the small generators of `rngs` (`SmallRng`, `Xoshiro256PlusPlus`). It
+/// does not bring `rngs::StdRng`, the thread generator `rand::rng()` or OS
+/// entropy: for those, depend on rand 0.10 yourself with its default
+/// features (cargo builds one copy with the features merged). For seeded
+/// runs the crate has its own generator, [`DefaultRng`] ([`seeded_rng`]).
 pub use rand;
 
 /// The README's examples, run as doctests.

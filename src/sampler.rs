@@ -4,6 +4,7 @@
 use crate::budget::{reserve_one, vec_bytes};
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
+use crate::count::{PointCap, to_cap};
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -87,6 +88,9 @@ pub struct Builder<const N: usize> {
     max_grid_bytes: u64,
     #[cfg_attr(feature = "serde", serde(default))]
     max_points: Option<u64>,
+    /// A negative cap was given (an `i32` literal): `build` refuses it.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    negative_cap: bool,
 }
 
 #[cfg(feature = "serde")]
@@ -138,9 +142,19 @@ impl<const N: usize> Builder<N> {
     /// Stops after `cap` points (default `None`: until the domain is full).
     /// A cap also bounds the memory a run grows to, so it can make a huge
     /// domain complete within the budget.
+    ///
+    /// `cap` is a `u64`, `usize`, `u32`, an integer literal, `None` or
+    /// `Some(u64)` ([`PointCap`]); a negative literal makes
+    /// [`build`](Self::build) fail with [`Error::InvalidPointCount`].
     #[must_use]
-    pub fn max_points(mut self, cap: Option<u64>) -> Self {
-        self.max_points = cap;
+    pub fn max_points(mut self, cap: impl PointCap) -> Self {
+        match to_cap(cap) {
+            Ok(cap) => {
+                self.max_points = cap;
+                self.negative_cap = false;
+            }
+            Err(()) => self.negative_cap = true,
+        }
         self
     }
 
@@ -152,6 +166,7 @@ impl<const N: usize> Builder<N> {
     /// [`Error::InvalidRadius`] if the radius is NaN, infinite, `<= 0` or
     /// outside `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
     /// [`Error::TooManyAttempts`] if `k > MAX_ATTEMPTS`;
+    /// [`Error::InvalidPointCount`] if the point cap was negative;
     /// [`Error::BoxTooWide`] if the box spans more than 2⁴⁰ radii;
     /// [`Error::GridTooLarge`] if what a grid allocates before its first
     /// point is over the budget (a dense grid asked for with a tiny radius,
@@ -165,6 +180,9 @@ impl<const N: usize> Builder<N> {
         let d = self.domain;
         let domain = Domain::new(d.lo(), d.hi())?.with_periodic(d.periodic());
         check_radius_and_attempts(self.radius, self.attempts)?;
+        if self.negative_cap {
+            return Err(Error::InvalidPointCount);
+        }
         let plan = plan(
             &domain,
             self.radius,
@@ -230,6 +248,7 @@ impl<const N: usize> PoissonDisk<N> {
             layout: GridLayout::default(),
             max_grid_bytes: DEFAULT_MAX_GRID_BYTES,
             max_points: None,
+            negative_cap: false,
         }
     }
 
