@@ -143,9 +143,13 @@
 //! the stream for a seed are flagged in the CHANGELOG.
 //!
 //! # Feature flags
-//! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`],
-//!   [`Candidates`] and [`GridLayout`]. Deserialising validates again, so a
-//!   bad file is an [`Error`], not a bad sampler. It never changes output.
+//! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`]
+//!   (written as its [`Builder`]), [`Tiled`] (written as its
+//!   [`TiledBuilder`]), [`Candidates`], [`GridLayout`] and [`Scheme`].
+//!   Deserialising validates again, so a bad file is an [`Error`], not a
+//!   bad sampler. Every field with a default may be left out; an unknown
+//!   field is an error; enum values are lower-case (`"sphere"`), as on the
+//!   `points` command line. It never changes output.
 //!   To reproduce a saved configuration exactly, use a format that
 //!   round-trips every `f64` (for `serde_json`, its `float_roundtrip`
 //!   feature).

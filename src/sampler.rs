@@ -71,10 +71,12 @@ pub type PoissonDisk3 = PoissonDisk<3>;
 /// Setting a value never fails; `build` validates everything at once, so a
 /// point cap or a larger budget can make feasible what the defaults would
 /// reject. With the `serde` feature this is the serialised form of a
-/// sampler; absent fields take their defaults.
+/// sampler: `domain` and `radius` are required, absent fields take their
+/// defaults, and an unknown field is an error (a misspelt `"atempts"` is
+/// not silently ignored).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename = "PoissonDisk"))]
+#[cfg_attr(feature = "serde", serde(rename = "PoissonDisk", deny_unknown_fields))]
 pub struct Builder<const N: usize> {
     domain: Domain<N>,
     radius: f64,

@@ -579,7 +579,7 @@ fn a_point_cap_makes_the_huge_box_complete_from_json() {
     let capped: PoissonDisk2 = serde_json::from_str(json).expect("capped sampler fits");
     let n = assert_valid(&capped, 3, usize::MAX);
     assert_eq!(n, 1000, "{n} points, cap 1000");
-    let dense = json.replace("\"max_points\": 1000", "\"layout\": \"Dense\"");
+    let dense = json.replace("\"max_points\": 1000", "\"layout\": \"dense\"");
     let err = serde_json::from_str::<PoissonDisk2>(&dense).expect_err("dense: too large");
     assert!(
         err.to_string().contains("budget"),
