@@ -2,6 +2,32 @@
 //! are never closer than a radius `r`, by Bridson's algorithm (SIGGRAPH
 //! 2007 sketch "Fast Poisson disk sampling in arbitrary dimensions").
 //!
+//! Three samplers, from the general to the specialised:
+//!
+//! - [`PoissonDisk`] fills a box of any dimension `N` (points are
+//!   `[f64; N]`), each axis bounded or periodic, given the minimum
+//!   distance `r`. It yields points lazily, in generation order, or
+//!   collects them all.
+//! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
+//!   scan order, while its memory stays proportional to one row of pixels:
+//!   for rasters too large to hold a set of, or a renderer that works a
+//!   pixel at a time. The spacing is a radius in pixels or a number of
+//!   points per pixel ([`TiledBuilder::per_pixel`]), and
+//!   [`TiledBuilder::exact`] gives exactly `n` points in every pixel. Its
+//!   default [`Scheme::Sweep`] runs one Bridson process across the image, so
+//!   pixel borders leave no trace in the set; [`Scheme::Paper`] is Ye's
+//!   per-pixel scheme, kept for comparison.
+//! - For a renderer's camera samples, [`PixelSampler`] is a sampler trait
+//!   in the shape of pbrt-v4's (`start_pixel_sample`, `get_1d`, `get_2d`,
+//!   `camera_sample`). [`PoissonPixelSampler`] implements it with exactly
+//!   `spp` samples in every dimension of every pixel, each dimension a
+//!   periodic Poisson disk set, the values a pure function of (seed, pixel,
+//!   sample index, dimension), so pixels can be visited in any order.
+//!   [`CameraPixels`] is the streaming form: pixels in scan order, their
+//!   film points from a `Tiled` stream (one Poisson set across pixel
+//!   borders), their lens, time and further dimensions from sets of as many
+//!   points as the pixel has.
+//!
 //! # Examples
 //!
 //! ## Example: points in the unit square
@@ -26,6 +52,34 @@
 //! let sampler = PoissonDisk::<4>::new(Domain::from_extent([1.0; 4])?, 0.3)?;
 //! let first_ten: Vec<[f64; 4]> = sampler.iter(&mut rng).take(10).collect();
 //! assert_eq!(first_ten.len(), 10);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! ## Example: a raster streamed pixel by pixel
+//! ```
+//! use bridson::Tiled;
+//! let tiled = Tiled::builder(32, 24).per_pixel(4.0).build()?;
+//! let mut total = 0;
+//! for pixel in tiled.pixels_seeded(3) {
+//!     // Each pixel's points, in raster coordinates, inside the pixel.
+//!     let (x, y) = (f64::from(pixel.x), f64::from(pixel.y));
+//!     assert!(pixel.points.iter().all(|p| p[0] - x < 1.0 && p[1] - y < 1.0));
+//!     total += pixel.points.len();
+//! }
+//! assert!((total as f64 / (32.0 * 24.0) - 4.0).abs() < 0.5);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! ## Example: a renderer's camera samples
+//! ```
+//! use bridson::{PixelSampler, PoissonPixelSampler};
+//! let mut sampler = PoissonPixelSampler::new(16, 7)?;
+//! for index in 0..16 {
+//!     sampler.start_pixel_sample([3, 5], index, 0)?;
+//!     let camera = sampler.camera_sample(); // film, time, lens
+//!     let light = sampler.get_2d(); // the integrator's next dimensions
+//!     assert!(camera.film.iter().chain(&light).all(|u| (0.0..1.0).contains(u)));
+//! }
 //! # Ok::<(), bridson::Error>(())
 //! ```
 //!
