@@ -1,7 +1,7 @@
 //! Point counts as callers hold them: `u64`, `usize`, `u32`, or an integer
 //! literal, and for a cap also `None` / `Some(u64)`.
 //!
-//! A sealed trait rather than `impl Into<Option<u64>>`: `usize` (what
+//! Sealed traits rather than `impl Into<Option<u64>>`: `usize` (what
 //! `Vec::len` gives) has no `From` into `u64`. An untyped literal such as
 //! `1000` is an `i32` to the compiler once more than one integer type is
 //! accepted, so `i32` is accepted too, and a negative one is refused by
@@ -18,6 +18,11 @@ mod sealed {
         fn to_cap(self) -> Result<Option<u64>, ()>;
     }
 }
+
+/// A number of points: a `u64`, `usize`, `u32` or an integer literal (an
+/// `i32`, refused by `build()` if negative). Taken by
+/// [`Builder::about_points`](crate::Builder::about_points).
+pub trait PointCount: sealed::Sealed {}
 
 /// A point cap: a `u64`, `usize`, `u32` or an integer literal (an `i32`,
 /// refused by `build()` if negative) for "stop after that many", or an
@@ -47,6 +52,11 @@ pub(crate) fn to_cap(cap: impl PointCap) -> Result<Option<u64>, ()> {
     sealed::Sealed::to_cap(cap)
 }
 
+/// Converts a count: `Err(())` if negative.
+pub(crate) fn to_count(count: impl PointCount) -> Result<u64, ()> {
+    sealed::Sealed::to_cap(count).and_then(|c| c.ok_or(()))
+}
+
 macro_rules! integer_counts {
     ($($t:ty),*) => {$(
         impl sealed::Sealed for $t {
@@ -54,6 +64,7 @@ macro_rules! integer_counts {
                 u64::try_from(self).map(Some).map_err(|_| ())
             }
         }
+        impl PointCount for $t {}
         impl PointCap for $t {}
     )*};
 }
@@ -82,5 +93,7 @@ mod tests {
         assert_eq!(to_cap(-1), Err(()), "negative literal");
         assert_eq!(to_cap(None), Ok(None), "no cap");
         assert_eq!(to_cap(Some(0)), Ok(Some(0)), "zero cap");
+        assert_eq!(to_count(n), Ok(7), "count");
+        assert_eq!(to_count(i32::MIN), Err(()), "negative count");
     }
 }

@@ -6,8 +6,9 @@
 //!
 //! - [`PoissonDisk`] fills a box of any dimension `N` (points are
 //!   `[f64; N]`), each axis bounded or periodic, given the minimum
-//!   distance `r`. It yields points lazily, in generation order, or
-//!   collects them all.
+//!   distance `r`, or about how many points to make
+//!   ([`PoissonDisk::about_points`]), from which it derives `r`. It yields
+//!   points lazily, in generation order, or collects them all.
 //! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
 //!   scan order, while its memory stays proportional to one row of pixels:
 //!   for rasters too large to hold a set of, or a renderer that works a
@@ -162,8 +163,9 @@
 //! What each awkward input gives. Errors come from [`Domain::new`] (box) or
 //! [`Builder::build`] (everything else), checked in this order: dimension,
 //! box, radius, attempts, point cap, grid; the budget is then checked as the run
-//! grows. Each row is a test in `tests/invalid_input.rs` or
-//! `tests/memory_budget.rs`; the fuzz targets in `fuzz/` check the rest.
+//! grows. Each row is a test in `tests/invalid_input.rs`,
+//! `tests/count_mode.rs` or `tests/memory_budget.rs`; the fuzz targets in
+//! `fuzz/` check the rest.
 //!
 //! | Input | Outcome |
 //! |---|---|
@@ -179,12 +181,13 @@
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
 //! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Iter::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
 //! | [`Builder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Iter::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
-//! | point cap negative (`max_points(-1)`: only an `i32` literal can be) | [`Error::InvalidPointCount`] |
+//! | point cap negative (`max_points(-1)`: only an `i32` literal can be), or count mode asking for 0 or a negative number of points (`about_points(0)`) | [`Error::InvalidPointCount`] |
+//! | count mode asking for more points than radii down to `1e-150` give | [`Error::InvalidRadius`] |
 //! | `k = 0` | [`Error::ZeroAttempts`] |
 //! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
 //! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
 //! | point cap `Some(0)` | an empty stream |
-//! | point cap `Some(c)` | the first `c` points of the uncapped stream; also bounds the sparse grid's memory |
+//! | point cap `Some(c)` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
 //! | point cap `Some(u64::MAX)` | the same as `None` |
 //! | any point, any input | `lo <= x < hi`: a candidate that rounds onto `hi` is dropped, never clamped |
 //!
@@ -273,7 +276,7 @@ mod serde_array;
 mod vector;
 
 pub use crate::candidates::Candidates;
-pub use crate::count::PointCap;
+pub use crate::count::{PointCap, PointCount};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;

@@ -501,3 +501,42 @@ fn tiled_is_validated_on_deserialise() {
     let no_height = json!({"width": 3, "radius": 0.5});
     assert_mentions(&error_of::<Tiled>(&no_height), &["height"]);
 }
+
+// ---------------------------------------------------------------- count mode
+
+/// Count mode is written as `about_points`; `radius` may then be left out,
+/// and a sampler read back derives the same radius.
+#[test]
+fn count_mode_round_trips() {
+    let domain = Domain::from_extent([2.0, 1.0]).expect("box");
+    let builder = PoissonDisk2::about_points(domain, 800).candidates(Candidates::Sphere);
+    assert_eq!(
+        serde_json::to_value(builder).expect("serialises"),
+        json!({
+            "domain": {"lo": [0.0, 0.0], "hi": [2.0, 1.0], "periodic": [false, false]},
+            "about_points": 800,
+            "attempts": 30,
+            "candidates": "sphere",
+            "layout": "auto",
+            "max_grid_bytes": DEFAULT_MAX_GRID_BYTES,
+            "max_points": null,
+        }),
+        "an unbuilt builder has no radius"
+    );
+    let sampler = builder.build().expect("valid");
+    let text = serde_json::to_string(&sampler).expect("serialises");
+    let back: PoissonDisk2 = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, sampler, "round trip through {text}");
+    assert_eq!(back.requested_count(), Some(800), "count kept");
+    let minimal: PoissonDisk2 = serde_json::from_value(json!({
+        "domain": {"lo": [0.0, 0.0], "hi": [2.0, 1.0]},
+        "about_points": 800,
+        "candidates": "sphere",
+    }))
+    .expect("deserialises");
+    assert_eq!(minimal, sampler, "no radius needed");
+    assert_mentions(
+        &error_of::<PoissonDisk2>(&with_field("about_points", json!(0))),
+        &["count"],
+    );
+}
