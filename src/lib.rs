@@ -8,7 +8,10 @@
 //!   `[f64; N]`), each axis bounded or periodic, given the minimum
 //!   distance `r`, or about how many points to make
 //!   ([`PoissonDisk::about_points`]), from which it derives `r`. It yields
-//!   points lazily, in generation order, or collects them all.
+//!   points lazily, in generation order, or collects them all;
+//!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
+//!   and clear of pre-placed points, which also gives seamless chunks of
+//!   an endless world (README has the recipe).
 //! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
 //!   scan order, while its memory stays proportional to one row of pixels:
 //!   for rasters too large to hold a set of, or a renderer that works a
@@ -287,7 +290,8 @@ pub use crate::render::{
     PoissonPixelSampler,
 };
 pub use crate::sampler::{
-    Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
+    Builder, DEFAULT_ATTEMPTS, Everywhere, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2,
+    PoissonDisk3, Region,
 };
 pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
 /// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and

@@ -24,6 +24,34 @@ pub const DEFAULT_ATTEMPTS: u32 = 30;
 /// for hours.
 pub const MAX_ATTEMPTS: u32 = 1 << 16;
 
+/// Where new points may go: the acceptance region of a run with
+/// [`PoissonDisk::iter_with`]. Implemented for [`Everywhere`] (a plain run)
+/// and for every closure `Fn(&[f64; N]) -> bool` (a mask: `true` where a
+/// point may go).
+pub trait Region<const N: usize> {
+    /// Whether a new point may lie at `p` (a point of the domain).
+    fn admits(&self, p: &[f64; N]) -> bool;
+}
+
+/// The region of a plain run: the whole domain. A zero-sized type, so a
+/// plain run's loop has no region check at all.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Everywhere;
+
+impl<const N: usize> Region<N> for Everywhere {
+    #[inline(always)]
+    fn admits(&self, _p: &[f64; N]) -> bool {
+        true
+    }
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> bool> Region<N> for F {
+    #[inline(always)]
+    fn admits(&self, p: &[f64; N]) -> bool {
+        self(p)
+    }
+}
+
 /// Smallest and largest radius accepted: beyond them `r²` (or the squared
 /// distances compared with it) is no longer a normal `f64`.
 const MIN_RADIUS: f64 = 1e-150;
@@ -436,9 +464,15 @@ impl<const N: usize> PoissonDisk<N> {
     /// sampler falls back to the sparse layout (same points) rather than
     /// abort; [`Iter::layout`] reports it.
     pub fn iter<R: Rng>(&self, rng: R) -> Iter<N, R> {
+        self.iter_in(rng, Everywhere)
+    }
+
+    /// As [`iter`](Self::iter), with every new point inside `region`.
+    fn iter_in<R: Rng, G: Region<N>>(&self, rng: R, region: G) -> Iter<N, R, G> {
         let c = &self.config;
         Iter {
             rng,
+            region,
             domain: c.domain,
             grid: Grid::build(&self.plan, &c.domain, c.radius),
             active: Vec::new(),
@@ -454,6 +488,92 @@ impl<const N: usize> PoissonDisk<N> {
             ahead: OffsetBatch::new(),
             next_pick: [None; 2],
         }
+    }
+
+    /// Points in generation order, drawn from `rng`, that lie in `region`
+    /// and keep their distance `r` from the pre-placed points `fixed`
+    /// (as from each other): the guarantees hold for the union of `fixed`
+    /// and the points yielded. The pre-placed points are not yielded; they
+    /// count against the memory budget but not against the point cap.
+    ///
+    /// Growth starts from the pre-placed points in the domain (candidates
+    /// are thrown around them as around any point), or, if there are none,
+    /// from a uniform point of the region (up to `64·k` tries; none found,
+    /// the stream is empty). It reaches every part of the region within
+    /// `2r` hops of where it started: parts of a mask farther apart (islands)
+    /// need a pre-placed point, or a run of their own. `region(p) == true`
+    /// means a new point may lie at `p`; [`Everywhere`] is the whole box.
+    ///
+    /// # Errors
+    /// [`Error::InvalidFixedPoint`] naming the first pre-placed point that is
+    /// not finite, lies outside the domain, or lies closer than `r` to an
+    /// earlier one; [`Error::MemoryBudgetExceeded`] (with `points: 0`) if
+    /// the pre-placed points alone outgrow the budget.
+    ///
+    /// # Example: points in a disc, around two given points
+    /// ```
+    /// use bridson::{Domain, PoissonDisk2};
+    /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.05)?;
+    /// let disc = |p: &[f64; 2]| (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) < 0.16;
+    /// let fixed = [[0.5, 0.5], [0.6, 0.5]];
+    /// let points: Vec<[f64; 2]> = sampler.iter_with(7, disc, &fixed)?.collect();
+    /// assert!(points.len() > 100);
+    /// for p in &points {
+    ///     assert!(disc(p));
+    ///     for q in &fixed {
+    ///         assert!((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) >= 0.05 * 0.05);
+    ///     }
+    /// }
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    pub fn iter_with<G: Region<N>>(
+        &self,
+        seed: u64,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<Iter<N, DefaultRng, G>, Error> {
+        self.iter_with_rng(seeded_rng(seed), region, fixed)
+    }
+
+    /// As [`iter_with`](Self::iter_with), drawing from `rng`.
+    ///
+    /// # Errors
+    /// As [`iter_with`](Self::iter_with).
+    pub fn iter_with_rng<R: Rng, G: Region<N>>(
+        &self,
+        rng: R,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<Iter<N, R, G>, Error> {
+        let mut it = self.iter_in(rng, region);
+        for (index, p) in fixed.iter().enumerate() {
+            let bad = Error::InvalidFixedPoint { index };
+            if !all_finite(p) || !it.domain.contains(p) {
+                return Err(bad);
+            }
+            let stored = match &mut it.grid {
+                Grid::Dense(g) => place(g, &mut it.active, *p, it.budget),
+                Grid::Sparse(g) => place(g, &mut it.active, *p, it.budget),
+            };
+            match stored {
+                Stored::Yes => {}
+                Stored::NoRoom => return Err(bad),
+                Stored::OverBudget => {
+                    return Err(Error::MemoryBudgetExceeded {
+                        points: 0,
+                        budget: it.budget,
+                    });
+                }
+            }
+        }
+        if !fixed.is_empty() {
+            // Growth starts from the pre-placed points.
+            it.started = true;
+            if it.single_point {
+                it.active.clear();
+            }
+        }
+        Ok(it)
     }
 
     /// Points in generation order from [`DefaultRng`] seeded with `seed`:
@@ -490,9 +610,13 @@ impl<const N: usize> PoissonDisk<N> {
 /// the point cap is reached, or storing the next point would take the
 /// run's memory past the budget ([`error`](Self::error) then says so);
 /// stays ended ([`FusedIterator`]).
+///
+/// `G` is the region new points must lie in ([`Everywhere`] unless the run
+/// came from [`PoissonDisk::iter_with`]).
 #[derive(Debug)]
-pub struct Iter<const N: usize, R> {
+pub struct Iter<const N: usize, R, G = Everywhere> {
     rng: R,
+    region: G,
     domain: Domain<N>,
     grid: Grid<N>,
     /// Points that may still have room around them, stored inline.
@@ -516,7 +640,7 @@ pub struct Iter<const N: usize, R> {
     next_pick: [Option<usize>; 2],
 }
 
-impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
+impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
@@ -526,6 +650,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
         let point = if self.started {
             let Self {
                 rng,
+                region,
                 domain,
                 grid,
                 active,
@@ -540,6 +665,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
             } = self;
             let state = State {
                 rng,
+                region,
                 domain,
                 active,
                 candidates,
@@ -557,7 +683,16 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
             }
         } else {
             self.started = true;
-            let first = first_point(&self.domain, &mut self.rng);
+            let mut first = first_point(&self.domain, &mut self.rng);
+            // In a region: further uniform tries, up to 64·k in all.
+            let mut tries = 64 * u64::from(self.attempts);
+            while !self.region.admits(&first) {
+                tries -= 1;
+                if tries == 0 {
+                    return None;
+                }
+                first = first_point(&self.domain, &mut self.rng);
+            }
             let stored = match &mut self.grid {
                 Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
@@ -594,9 +729,9 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
     }
 }
 
-impl<const N: usize, R: Rng> FusedIterator for Iter<N, R> {}
+impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Iter<N, R, G> {}
 
-impl<const N: usize, R> Iter<N, R> {
+impl<const N: usize, R, G> Iter<N, R, G> {
     /// Why the stream ended before the domain was full, if it did:
     /// [`Error::MemoryBudgetExceeded`] when storing the next point would
     /// have taken the run's memory past the budget. `None` while the stream
@@ -644,8 +779,9 @@ impl<const N: usize, R> Iter<N, R> {
 
 /// The parts of [`Iter`] the growth loop mutates, borrowed apart from the
 /// grid so the loop can be monomorphised per grid layout.
-struct State<'a, const N: usize, R> {
+struct State<'a, const N: usize, R, G> {
     rng: &'a mut R,
+    region: &'a G,
     domain: &'a Domain<N>,
     active: &'a mut Vec<[f64; N]>,
     candidates: &'a CandidateSampler<N>,
@@ -658,18 +794,18 @@ struct State<'a, const N: usize, R> {
     error: &'a mut Option<Error>,
 }
 
-impl<const N: usize, R: Rng> State<'_, N, R> {
+impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
     /// Bridson's loop up to the next accepted point, with a cache of
     /// `B` recent conflicts sized for the dimension.
     #[inline(always)]
-    fn grow<G: NeighbourGrid<N>>(self, grid: &mut G) -> Option<[f64; N]> {
+    fn grow<T: NeighbourGrid<N>>(self, grid: &mut T) -> Option<[f64; N]> {
         // How many conflicts a pick remembers: its active point's nearest
         // neighbours, then whatever the grid finds. 8 in 2-D (the 5×5
         // stencil rarely holds more); 16 from 3-D up (125 cells hold ~14).
         if N <= 2 {
-            self.grow_cached::<G, 8>(grid)
+            self.grow_cached::<T, 8>(grid)
         } else {
-            self.grow_cached::<G, 16>(grid)
+            self.grow_cached::<T, 16>(grid)
         }
     }
 
@@ -680,7 +816,7 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
     /// away, are remembered for the rest of the pick and checked first
     /// ([`ConflictCache`]); that changes no decision.
     #[inline(always)]
-    fn grow_cached<G: NeighbourGrid<N>, const B: usize>(self, grid: &mut G) -> Option<[f64; N]> {
+    fn grow_cached<T: NeighbourGrid<N>, const B: usize>(self, grid: &mut T) -> Option<[f64; N]> {
         let periodic = self.domain.any_periodic();
         let periods = self.domain.periods();
         let ahead = self.candidates.reads_ahead();
@@ -725,6 +861,10 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                 };
                 let mut candidate = add(&parent, &offset);
                 if !interior && !self.domain.wrap(&mut candidate) {
+                    continue;
+                }
+                // Compiled out for `Everywhere`.
+                if !self.region.admits(&candidate) {
                     continue;
                 }
                 let blocked = if periodic {
@@ -792,6 +932,20 @@ fn store<const N: usize, G: NeighbourGrid<N>>(
     }
     active.push(p);
     Stored::Yes
+}
+
+/// Stores a pre-placed point if no stored point lies closer than `r`
+/// (`NoRoom` otherwise), within the budget.
+fn place<const N: usize, T: NeighbourGrid<N>>(
+    grid: &mut T,
+    active: &mut Vec<[f64; N]>,
+    p: [f64; N],
+    budget: u64,
+) -> Stored {
+    if grid.conflict(&p).is_some() {
+        return Stored::NoRoom;
+    }
+    store(grid, active, p, budget)
 }
 
 /// A pick index drawn ahead, uniform over `0..bound` with `bound >= len`
