@@ -11,7 +11,7 @@
 
 use crate::batch::check_generate;
 use crate::common;
-use bridson::{Builder, Domain, PoissonDisk, Tiled, TiledBuilder};
+use bridson::{Builder, Domain, Error, PoissonDisk, Tiled, TiledBuilder};
 
 /// Most points generated per execution.
 const POINT_LIMIT: u64 = 1000;
@@ -28,6 +28,42 @@ pub(crate) fn run(data: &[u8]) {
     check_tiled(data);
 }
 
+/// Reads `data` as a validated sampler `T` and as its unchecked builder
+/// form `B`, and checks that they agree (whatever builds deserialises, and
+/// to the same sampler) and that `T` round-trips through JSON. `None` if
+/// `data` is no `T`.
+fn read_checked<T, B>(data: &[u8], ctx: &str, build: fn(B) -> Result<T, Error>) -> Option<T>
+where
+    T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + core::fmt::Debug,
+    B: serde::de::DeserializeOwned + core::fmt::Debug + Copy,
+{
+    let builder = serde_json::from_slice::<B>(data);
+    let Ok(sampler) = serde_json::from_slice::<T>(data) else {
+        // The sampler form is the builder form, validated.
+        if let Ok(b) = builder {
+            assert!(
+                build(b).is_err(),
+                "{ctx}{b:?} builds, but does not deserialise as a sampler"
+            );
+        }
+        return None;
+    };
+    let ctx = format!("{ctx}{sampler:?}");
+    match builder.map(build) {
+        Ok(Ok(built)) => assert_eq!(built, sampler, "{ctx}: the builder form disagrees"),
+        other => panic!("{ctx}: the builder form disagrees: {other:?}"),
+    }
+    let text = match serde_json::to_string(&sampler) {
+        Ok(text) => text,
+        Err(e) => panic!("{ctx}: does not serialise: {e}"),
+    };
+    match serde_json::from_str::<T>(&text) {
+        Ok(back) => assert_eq!(back, sampler, "{ctx}: round trip through {text}"),
+        Err(e) => panic!("{ctx}: {text} does not deserialise: {e}"),
+    }
+    Some(sampler)
+}
+
 /// Most pixels streamed per execution, and the smallest radius streamed
 /// (about 7 points per pixel): the O(n²) oracle stays in milliseconds.
 const TILED_PIXEL_LIMIT: u64 = 64;
@@ -36,37 +72,17 @@ const TILED_MIN_RADIUS: f64 = 0.3;
 const TILED_BUDGET_LIMIT: u64 = 4 << 20;
 
 fn check_tiled(data: &[u8]) {
-    let builder = serde_json::from_slice::<TiledBuilder>(data);
-    let Ok(tiled) = serde_json::from_slice::<Tiled>(data) else {
-        if let Ok(b) = builder {
-            assert!(
-                b.build().is_err(),
-                "{b:?} builds, but does not deserialise as a Tiled"
-            );
-        }
+    let Some(tiled) = read_checked::<Tiled, _>(data, "", TiledBuilder::build) else {
         return;
     };
     let ctx = format!("{tiled:?}");
-    assert_eq!(
-        builder.map(TiledBuilder::build).ok(),
-        Some(Ok(tiled)),
-        "{ctx}: the builder form disagrees"
-    );
-    let text = match serde_json::to_string(&tiled) {
-        Ok(text) => text,
-        Err(e) => panic!("{ctx}: does not serialise: {e}"),
-    };
-    match serde_json::from_str::<Tiled>(&text) {
-        Ok(back) => assert_eq!(back, tiled, "{ctx}: round trip through {text}"),
-        Err(e) => panic!("{ctx}: {text} does not deserialise: {e}"),
-    }
     let pixels = u64::from(tiled.width()) * u64::from(tiled.height());
     if pixels > TILED_PIXEL_LIMIT || tiled.radius() < TILED_MIN_RADIUS {
         return;
     }
     let small = tiled
         .to_builder()
-        .attempts(ATTEMPT_LIMIT.min(tiled_attempts(&text)))
+        .attempts(ATTEMPT_LIMIT.min(tiled_attempts(&tiled)))
         .max_window_bytes(TILED_BUDGET_LIMIT)
         .build();
     let Ok(small) = small else {
@@ -96,9 +112,10 @@ fn check_tiled(data: &[u8]) {
     );
 }
 
-/// The `attempts` of a serialised `Tiled` (the type has no getter for it).
-fn tiled_attempts(text: &str) -> u32 {
-    serde_json::from_str::<serde_json::Value>(text)
+/// The `attempts` of a `Tiled`, read from its serialised form (the type
+/// has no getter for it).
+fn tiled_attempts(tiled: &Tiled) -> u32 {
+    serde_json::to_value(tiled)
         .ok()
         .and_then(|v| v.get("attempts")?.as_u64())
         .and_then(|k| u32::try_from(k).ok())
@@ -122,31 +139,12 @@ fn check<const N: usize>(data: &[u8]) {
             "N = {N}: a deserialised domain that Domain::new rejects"
         );
     }
-    let builder = serde_json::from_slice::<Builder<N>>(data);
-    let Ok(sampler) = serde_json::from_slice::<PoissonDisk<N>>(data) else {
-        // The sampler form is the builder form, validated.
-        if let Ok(b) = builder {
-            assert!(
-                b.build().is_err(),
-                "N = {N}: {b:?} builds, but does not deserialise as a sampler"
-            );
-        }
+    let Some(sampler) =
+        read_checked::<PoissonDisk<N>, _>(data, &format!("N = {N}: "), Builder::<N>::build)
+    else {
         return;
     };
     let ctx = format!("N = {N}, {sampler:?}");
-    assert_eq!(
-        builder.map(Builder::build).ok(),
-        Some(Ok(sampler)),
-        "{ctx}: the builder form disagrees"
-    );
-    let text = match serde_json::to_string(&sampler) {
-        Ok(text) => text,
-        Err(e) => panic!("{ctx}: does not serialise: {e}"),
-    };
-    match serde_json::from_str::<PoissonDisk<N>>(&text) {
-        Ok(back) => assert_eq!(back, sampler, "{ctx}: round trip through {text}"),
-        Err(e) => panic!("{ctx}: {text} does not deserialise: {e}"),
-    }
 
     let cap = sampler
         .max_points()
