@@ -178,16 +178,24 @@ impl<const N: usize> Domain<N> {
 }
 
 /// The unchecked form read by serde before [`Domain::new`] validates it.
+/// `periodic` may be left out (no axis periodic, as [`Domain::new`]); any
+/// other field is an error, so a misspelt `"periodc"` is not ignored.
 #[cfg(feature = "serde")]
 #[derive(serde::Deserialize)]
-#[serde(rename = "Domain")]
+#[serde(rename = "Domain", deny_unknown_fields)]
 struct DomainRepr<const N: usize> {
     #[serde(with = "crate::serde_array")]
     lo: [f64; N],
     #[serde(with = "crate::serde_array")]
     hi: [f64; N],
-    #[serde(with = "crate::serde_array")]
+    #[serde(with = "crate::serde_array", default = "all_bounded")]
     periodic: [bool; N],
+}
+
+/// The default of `periodic`: every axis bounded.
+#[cfg(feature = "serde")]
+fn all_bounded<const N: usize>() -> [bool; N] {
+    [false; N]
 }
 
 #[cfg(feature = "serde")]

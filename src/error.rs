@@ -41,6 +41,18 @@ pub enum Error {
         /// The largest `k` accepted.
         max: u32,
     },
+    /// Occurs when a point cap ([`Builder::max_points`](crate::Builder::max_points))
+    /// is negative: only an `i32`, the type of an untyped integer literal,
+    /// can be.
+    InvalidPointCount,
+    /// Occurs when a pre-placed point given to
+    /// [`PoissonDisk::iter_with`](crate::PoissonDisk::iter_with) is not
+    /// finite, lies outside the domain, or lies closer than `r` to an
+    /// earlier pre-placed point.
+    InvalidFixedPoint {
+        /// The index of the first bad point.
+        index: usize,
+    },
     /// Occurs when the box spans more than 2⁴⁰ radii on some axis. Cell
     /// indices that large lose the precision the exact search relies on, so
     /// neither a point cap nor a larger budget helps: grow the radius or
@@ -144,6 +156,12 @@ impl fmt::Display for Error {
             Self::TooManyAttempts { max } => {
                 write!(f, "the number of attempts k must be at most {max}")
             }
+            Self::InvalidFixedPoint { index } => write!(
+                f,
+                "pre-placed point {index} is not finite, lies outside the domain, or lies closer \
+                 than r to an earlier one"
+            ),
+            Self::InvalidPointCount => f.write_str("a point count or cap must not be negative"),
             Self::BoxTooWide { axis } => write!(
                 f,
                 "the box spans more than 2^40 radii on axis {axis}: grow the radius or shrink the box"

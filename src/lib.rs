@@ -2,6 +2,36 @@
 //! are never closer than a radius `r`, by Bridson's algorithm (SIGGRAPH
 //! 2007 sketch "Fast Poisson disk sampling in arbitrary dimensions").
 //!
+//! Three samplers, from the general to the specialised:
+//!
+//! - [`PoissonDisk`] fills a box of any dimension `N` (points are
+//!   `[f64; N]`), each axis bounded or periodic, given the minimum
+//!   distance `r`, or about how many points to make
+//!   ([`PoissonDisk::about_points`]), from which it derives `r`. It yields
+//!   points lazily, in generation order, or collects them all;
+//!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
+//!   and clear of pre-placed points, which also gives seamless chunks of
+//!   an endless world (README has the recipe).
+//! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
+//!   scan order, while its memory stays proportional to one row of pixels:
+//!   for rasters too large to hold a set of, or a renderer that works a
+//!   pixel at a time. The spacing is a radius in pixels or a number of
+//!   points per pixel ([`TiledBuilder::per_pixel`]), and
+//!   [`TiledBuilder::exact`] gives exactly `n` points in every pixel. Its
+//!   default [`Scheme::Sweep`] runs one Bridson process across the image, so
+//!   pixel borders leave no trace in the set; [`Scheme::Paper`] is Ye's
+//!   per-pixel scheme, kept for comparison.
+//! - For a renderer's camera samples, [`PixelSampler`] is a sampler trait
+//!   in the shape of pbrt-v4's (`start_pixel_sample`, `get_1d`, `get_2d`,
+//!   `camera_sample`). [`PoissonPixelSampler`] implements it with exactly
+//!   `spp` samples in every dimension of every pixel, each dimension a
+//!   periodic Poisson disk set, the values a pure function of (seed, pixel,
+//!   sample index, dimension), so pixels can be visited in any order.
+//!   [`CameraPixels`] is the streaming form: pixels in scan order, their
+//!   film points from a `Tiled` stream (one Poisson set across pixel
+//!   borders), their lens, time and further dimensions from sets of as many
+//!   points as the pixel has.
+//!
 //! # Examples
 //!
 //! ## Example: points in the unit square
@@ -29,6 +59,91 @@
 //! # Ok::<(), bridson::Error>(())
 //! ```
 //!
+//! ## Example: a raster streamed pixel by pixel
+//! ```
+//! use bridson::Tiled;
+//! let tiled = Tiled::builder(32, 24).per_pixel(4.0).build()?;
+//! let mut total = 0;
+//! for pixel in tiled.pixels_seeded(3) {
+//!     // Each pixel's points, in raster coordinates, inside the pixel.
+//!     let (x, y) = (f64::from(pixel.x), f64::from(pixel.y));
+//!     assert!(pixel.points.iter().all(|p| p[0] - x < 1.0 && p[1] - y < 1.0));
+//!     total += pixel.points.len();
+//! }
+//! assert!((total as f64 / (32.0 * 24.0) - 4.0).abs() < 0.5);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! ## Example: a renderer's camera samples
+//! ```
+//! use bridson::{PixelSampler, PoissonPixelSampler};
+//! let mut sampler = PoissonPixelSampler::new(16, 7)?;
+//! for index in 0..16 {
+//!     sampler.start_pixel_sample([3, 5], index, 0)?;
+//!     let camera = sampler.camera_sample(); // film, time, lens
+//!     let light = sampler.get_2d(); // the integrator's next dimensions
+//!     assert!(camera.film.iter().chain(&light).all(|u| (0.0..1.0).contains(u)));
+//! }
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! # Which rand
+//! The crate is built on rand **0.10** (`rand_core` 0.10):
+//! [`PoissonDisk::iter`] takes any generator implementing that version's
+//! `Rng`, and [`rand`](mod@rand) re-exports that version so the names
+//! match. A generator from another rand version, such as rand 0.9's
+//! `StdRng`, implements that version's traits instead, and the compiler
+//! says so obliquely ("the trait `DerefMut` is not implemented for
+//! `StdRng`", from rand 0.10's impl for `&mut` generators). Two ways out,
+//! shown with rand 0.9 (named `rand_09` in this crate's tests; `rand` in
+//! your project):
+//!
+//! ## Example: seeding from a generator of another rand version
+//! ```
+//! use bridson::{Domain, PoissonDisk2};
+//! use rand_09::{Rng as _, SeedableRng as _};
+//! let mut my_rng = rand_09::rngs::SmallRng::seed_from_u64(5);
+//! let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.1)?;
+//! // One u64 from your generator seeds the crate's own (`DefaultRng`):
+//! // the points follow from your generator's state, on every platform.
+//! let seed: u64 = my_rng.random();
+//! let points = sampler.generate_seeded(seed)?;
+//! assert!(points.len() > 50);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
+//! ## Example: drawing from a generator of another rand version
+//! A newtype that implements rand 0.10's `TryRng` (infallibly) lends the
+//! sampler your generator's stream itself:
+//! ```
+//! use bridson::rand::TryRng;
+//! use bridson::{Domain, PoissonDisk2};
+//! use core::convert::Infallible;
+//! use rand_09::SeedableRng as _;
+//!
+//! struct Rand09<R>(R);
+//!
+//! impl<R: rand_09::RngCore> TryRng for Rand09<R> {
+//!     type Error = Infallible;
+//!     fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+//!         Ok(self.0.next_u32())
+//!     }
+//!     fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+//!         Ok(self.0.next_u64())
+//!     }
+//!     fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+//!         self.0.fill_bytes(dst);
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let mut my_rng = Rand09(rand_09::rngs::SmallRng::seed_from_u64(5));
+//! let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.1)?;
+//! let points: Vec<[f64; 2]> = sampler.iter(&mut my_rng).collect();
+//! assert!(points.len() > 50);
+//! # Ok::<(), bridson::Error>(())
+//! ```
+//!
 //! # Guarantees
 //! For every sampler that [`PoissonDisk::new`] accepts:
 //! 1. No two points are closer than `r`: for every pair,
@@ -50,9 +165,10 @@
 //! # Limits
 //! What each awkward input gives. Errors come from [`Domain::new`] (box) or
 //! [`Builder::build`] (everything else), checked in this order: dimension,
-//! box, radius, attempts, grid; the budget is then checked as the run
-//! grows. Each row is a test in `tests/invalid_input.rs` or
-//! `tests/memory_budget.rs`; the fuzz targets in `fuzz/` check the rest.
+//! box, radius, attempts, point cap, grid; the budget is then checked as the run
+//! grows. Each row is a test in `tests/invalid_input.rs`,
+//! `tests/count_mode.rs` or `tests/memory_budget.rs`; the fuzz targets in
+//! `fuzz/` check the rest.
 //!
 //! | Input | Outcome |
 //! |---|---|
@@ -68,11 +184,13 @@
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
 //! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Iter::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
 //! | [`Builder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Iter::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
+//! | point cap negative (`max_points(-1)`: only an `i32` literal can be), or count mode asking for 0 or a negative number of points (`about_points(0)`) | [`Error::InvalidPointCount`] |
+//! | count mode asking for more points than radii down to `1e-150` give | [`Error::InvalidRadius`] |
 //! | `k = 0` | [`Error::ZeroAttempts`] |
 //! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
 //! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
 //! | point cap `Some(0)` | an empty stream |
-//! | point cap `Some(c)` | the first `c` points of the uncapped stream; also bounds the sparse grid's memory |
+//! | point cap `Some(c)` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
 //! | point cap `Some(u64::MAX)` | the same as `None` |
 //! | any point, any input | `lo <= x < hi`: a candidate that rounds onto `hi` is dropped, never clamped |
 //!
@@ -85,9 +203,13 @@
 //! the stream for a seed are flagged in the CHANGELOG.
 //!
 //! # Feature flags
-//! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`],
-//!   [`Candidates`] and [`GridLayout`]. Deserialising validates again, so a
-//!   bad file is an [`Error`], not a bad sampler. It never changes output.
+//! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`]
+//!   (written as its [`Builder`]), [`Tiled`] (written as its
+//!   [`TiledBuilder`]), [`Candidates`], [`GridLayout`] and [`Scheme`].
+//!   Deserialising validates again, so a bad file is an [`Error`], not a
+//!   bad sampler. Every field with a default may be left out; an unknown
+//!   field is an error; enum values are lower-case (`"sphere"`), as on the
+//!   `points` command line. It never changes output.
 //!   To reproduce a saved configuration exactly, use a format that
 //!   round-trips every `f64` (for `serde_json`, its `float_roundtrip`
 //!   feature).
@@ -140,6 +262,7 @@ mod tiled;
 // Core: the sampler, where its candidates fall, its per-pick cache.
 mod candidates;
 mod conflict_cache;
+mod count;
 mod sampler;
 // The background grid.
 mod grid;
@@ -156,6 +279,7 @@ mod serde_array;
 mod vector;
 
 pub use crate::candidates::Candidates;
+pub use crate::count::{PointCap, PointCount};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
@@ -166,9 +290,22 @@ pub use crate::render::{
     PoissonPixelSampler,
 };
 pub use crate::sampler::{
-    Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
+    Builder, DEFAULT_ATTEMPTS, Everywhere, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2,
+    PoissonDisk3, Region,
 };
 pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
+/// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and
+/// [`Tiled::pixels`] take, re-exported so that `bridson::rand::Rng` always
+/// names the right trait whatever rand your project uses (see "Which rand"
+/// in the crate docs).
+///
+/// It is rand with its default features off, as this crate needs it: the
+/// traits (`Rng`, `TryRng`, `SeedableRng`, `RngExt`), `distr`, `seq` and
+/// the small generators of `rngs` (`SmallRng`, `Xoshiro256PlusPlus`). It
+/// does not bring `rngs::StdRng`, the thread generator `rand::rng()` or OS
+/// entropy: for those, depend on rand 0.10 yourself with its default
+/// features (cargo builds one copy with the features merged). For seeded
+/// runs the crate has its own generator, [`DefaultRng`] ([`seeded_rng`]).
 pub use rand;
 
 /// The README's examples, run as doctests.

@@ -4,6 +4,8 @@
 use crate::budget::{reserve_one, vec_bytes};
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
+use crate::count::{PointCap, PointCount, to_cap, to_count};
+use crate::density::radius_for_count;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::{DEFAULT_MAX_GRID_BYTES, Grid, GridLayout, GridPlan, NeighbourGrid, plan};
@@ -21,6 +23,34 @@ pub const DEFAULT_ATTEMPTS: u32 = 30;
 /// packing hardly changes, and a `k` in the billions would keep a run going
 /// for hours.
 pub const MAX_ATTEMPTS: u32 = 1 << 16;
+
+/// Where new points may go: the acceptance region of a run with
+/// [`PoissonDisk::iter_with`]. Implemented for [`Everywhere`] (a plain run)
+/// and for every closure `Fn(&[f64; N]) -> bool` (a mask: `true` where a
+/// point may go).
+pub trait Region<const N: usize> {
+    /// Whether a new point may lie at `p` (a point of the domain).
+    fn admits(&self, p: &[f64; N]) -> bool;
+}
+
+/// The region of a plain run: the whole domain. A zero-sized type, so a
+/// plain run's loop has no region check at all.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Everywhere;
+
+impl<const N: usize> Region<N> for Everywhere {
+    #[inline(always)]
+    fn admits(&self, _p: &[f64; N]) -> bool {
+        true
+    }
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> bool> Region<N> for F {
+    #[inline(always)]
+    fn admits(&self, p: &[f64; N]) -> bool {
+        self(p)
+    }
+}
 
 /// Smallest and largest radius accepted: beyond them `r²` (or the squared
 /// distances compared with it) is no longer a normal `f64`.
@@ -70,13 +100,27 @@ pub type PoissonDisk3 = PoissonDisk<3>;
 /// Setting a value never fails; `build` validates everything at once, so a
 /// point cap or a larger budget can make feasible what the defaults would
 /// reject. With the `serde` feature this is the serialised form of a
-/// sampler; absent fields take their defaults.
+/// sampler: `domain` and `radius` are required, absent fields take their
+/// defaults, and an unknown field is an error (a misspelt `"atempts"` is
+/// not silently ignored).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename = "PoissonDisk"))]
+#[cfg_attr(feature = "serde", serde(rename = "PoissonDisk", deny_unknown_fields))]
 pub struct Builder<const N: usize> {
     domain: Domain<N>,
+    /// Absent (NaN) in count mode, which derives it.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "unset_radius", skip_serializing_if = "is_unset")
+    )]
     radius: f64,
+    /// Count mode: about this many points; the radius follows. `Some(0)`
+    /// (also for a negative count) is refused by `build`.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    about_points: Option<u64>,
     #[cfg_attr(feature = "serde", serde(default = "default_attempts"))]
     attempts: u32,
     #[cfg_attr(feature = "serde", serde(default))]
@@ -87,6 +131,23 @@ pub struct Builder<const N: usize> {
     max_grid_bytes: u64,
     #[cfg_attr(feature = "serde", serde(default))]
     max_points: Option<u64>,
+    /// A negative cap was given (an `i32` literal): `build` refuses it.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    negative_cap: bool,
+}
+
+#[cfg(feature = "serde")]
+fn unset_radius() -> f64 {
+    f64::NAN
+}
+
+#[cfg(feature = "serde")]
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde passes a reference"
+)]
+fn is_unset(radius: &f64) -> bool {
+    radius.is_nan()
 }
 
 #[cfg(feature = "serde")]
@@ -138,9 +199,70 @@ impl<const N: usize> Builder<N> {
     /// Stops after `cap` points (default `None`: until the domain is full).
     /// A cap also bounds the memory a run grows to, so it can make a huge
     /// domain complete within the budget.
+    ///
+    /// A cap keeps the first `cap` points of the stream, and Bridson's
+    /// algorithm grows the set outward from its first point: a capped set
+    /// is a compact blob around a random point, not points spread over the
+    /// box. In a 10⁶ × 10⁶ box at `r = 1`, a cap of 1 000 gives a blob about
+    /// 52 × 45 units wide (seed 3). For about `n` points spread over the
+    /// whole box, use count mode, [`about_points`](Self::about_points),
+    /// which picks the radius instead.
+    ///
+    /// `cap` is a `u64`, `usize`, `u32`, an integer literal, `None` or
+    /// `Some(u64)` ([`PointCap`]); a negative literal makes
+    /// [`build`](Self::build) fail with [`Error::InvalidPointCount`].
     #[must_use]
-    pub fn max_points(mut self, cap: Option<u64>) -> Self {
-        self.max_points = cap;
+    pub fn max_points(mut self, cap: impl PointCap) -> Self {
+        match to_cap(cap) {
+            Ok(cap) => {
+                self.max_points = cap;
+                self.negative_cap = false;
+            }
+            Err(()) => self.negative_cap = true,
+        }
+        self
+    }
+
+    /// Count mode: asks for about `n` points instead of a radius. `build`
+    /// derives the radius at which this sampler, in this box, makes `n`
+    /// points on average (replacing any radius given), from the density the
+    /// sampler reaches at `k = 30` in the box's interior and along its faces,
+    /// measured once and tabulated (`examples/count_density.rs`; the model is
+    /// in `src/density.rs`). One run, no trial runs.
+    ///
+    /// The expected count (the mean over seeds) is within ±2 % of `n` for
+    /// `n >= 1000` in 2-D and 3-D, either candidate kind, any mix of bounded
+    /// and periodic axes, in every box at least 4 radii thick on each axis
+    /// at the radius derived (at 1 000 points, a 2-D strip up to about
+    /// 1:60, a 3-D rod up to about 1:20:20). A single run scatters
+    /// around it: at 1 000 points by about 0.9 % (standard deviation) in
+    /// 2-D and 1.2 % in 3-D, falling as `1/√n`. Thinner boxes
+    /// get the mean the sampler reaches there, but the count itself varies
+    /// widely between seeds (annulus candidates mostly land outside a slab
+    /// thinner than 2 radii, so growth dies out early: raise `k`). Other `k`
+    /// change the density (more attempts, more points). 1-D and 4-D up use
+    /// the interior density with a cruder boundary term: expect a few
+    /// percent off, more from 5-D up, where most of a box is near a face.
+    ///
+    /// This is the tool for "about `n` well-spread points": unlike a
+    /// [`max_points`](Self::max_points) cap, it covers the whole box.
+    /// `n` is a `u64`, `usize`, `u32` or an integer literal
+    /// ([`PointCount`]); 0 or a negative literal makes `build` fail with
+    /// [`Error::InvalidPointCount`]. [`PoissonDisk::radius`] tells the
+    /// radius chosen.
+    ///
+    /// # Example: about 5 000 points in a periodic 3 × 1 box
+    /// ```
+    /// use bridson::{Domain, PoissonDisk2};
+    /// let domain = Domain::from_extent([3.0, 1.0])?.with_periodic([true; 2]);
+    /// let sampler = PoissonDisk2::about_points(domain, 5000).build()?;
+    /// let n = sampler.generate_seeded(1)?.len();
+    /// assert!((4900..=5100).contains(&n), "{n} points at r = {}", sampler.radius());
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    #[must_use]
+    pub fn about_points(mut self, n: impl PointCount) -> Self {
+        self.about_points = Some(to_count(n).unwrap_or(0));
         self
     }
 
@@ -149,9 +271,12 @@ impl<const N: usize> Builder<N> {
     /// # Errors
     /// [`Error::ZeroDimension`] if `N == 0`; the [`Domain::new`] errors if
     /// the domain was deserialised from bad values;
-    /// [`Error::InvalidRadius`] if the radius is NaN, infinite, `<= 0` or
-    /// outside `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
+    /// [`Error::InvalidPointCount`] if count mode asks for 0 points (or a
+    /// negative number); [`Error::InvalidRadius`] if the radius (given, or
+    /// derived from the count) is NaN, infinite, `<= 0` or outside
+    /// `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
     /// [`Error::TooManyAttempts`] if `k > MAX_ATTEMPTS`;
+    /// [`Error::InvalidPointCount`] if the point cap was negative;
     /// [`Error::BoxTooWide`] if the box spans more than 2⁴⁰ radii;
     /// [`Error::GridTooLarge`] if what a grid allocates before its first
     /// point is over the budget (a dense grid asked for with a tiny radius,
@@ -164,16 +289,33 @@ impl<const N: usize> Builder<N> {
         // Re-checked: deserialisation can produce any Domain.
         let d = self.domain;
         let domain = Domain::new(d.lo(), d.hi())?.with_periodic(d.periodic());
-        check_radius_and_attempts(self.radius, self.attempts)?;
+        let radius = match self.about_points {
+            None => self.radius,
+            Some(0) => return Err(Error::InvalidPointCount),
+            Some(n) => radius_for_count(
+                &domain.extent(),
+                &domain.periodic(),
+                self.candidates == Candidates::Sphere,
+                n,
+            ),
+        };
+        check_radius_and_attempts(radius, self.attempts)?;
+        if self.negative_cap {
+            return Err(Error::InvalidPointCount);
+        }
         let plan = plan(
             &domain,
-            self.radius,
+            radius,
             self.layout,
             self.max_grid_bytes,
             self.max_points,
         )?;
         Ok(PoissonDisk {
-            config: Self { domain, ..self },
+            config: Self {
+                domain,
+                radius,
+                ..self
+            },
             plan,
         })
     }
@@ -225,15 +367,25 @@ impl<const N: usize> PoissonDisk<N> {
         Builder {
             domain,
             radius,
+            about_points: None,
             attempts: DEFAULT_ATTEMPTS,
             candidates: Candidates::default(),
             layout: GridLayout::default(),
             max_grid_bytes: DEFAULT_MAX_GRID_BYTES,
             max_points: None,
+            negative_cap: false,
         }
     }
 
+    /// Settings for about `n` points in `domain` instead of a radius
+    /// (count mode, [`Builder::about_points`]), to adjust before
+    /// [`Builder::build`] derives the radius.
+    pub fn about_points(domain: Domain<N>, n: impl PointCount) -> Builder<N> {
+        Self::builder(domain, f64::NAN).about_points(n)
+    }
+
     /// The settings this sampler was built from, to adjust and rebuild.
+    /// In count mode the radius is the one derived.
     pub fn to_builder(&self) -> Builder<N> {
         self.config
     }
@@ -243,7 +395,8 @@ impl<const N: usize> PoissonDisk<N> {
         &self.config.domain
     }
 
-    /// The minimum distance between points.
+    /// The minimum distance between points (in count mode, the one
+    /// derived from the count).
     pub fn radius(&self) -> f64 {
         self.config.radius
     }
@@ -282,6 +435,11 @@ impl<const N: usize> PoissonDisk<N> {
         self.config.max_points
     }
 
+    /// The count asked for in count mode ([`Builder::about_points`]).
+    pub fn requested_count(&self) -> Option<u64> {
+        self.config.about_points
+    }
+
     /// The bytes the grid takes before its first point is stored, checked
     /// against the budget by `build()`: for the dense layout its cells and
     /// search stencils (a bound on their peak while built), for the sparse
@@ -297,13 +455,24 @@ impl<const N: usize> PoissonDisk<N> {
     /// Points in generation order, drawn from `rng`. Pass `&mut rng` to
     /// keep using your generator afterwards.
     ///
+    /// The set grows outward from its first point, so a prefix of the
+    /// stream (`take(n)`, or a [`max_points`](Builder::max_points) cap) is a
+    /// compact blob, not `n` points spread over the box: for those, use
+    /// count mode ([`Builder::about_points`]) and take the whole stream.
+    ///
     /// The grid is allocated here. Should the dense allocation fail, the
     /// sampler falls back to the sparse layout (same points) rather than
     /// abort; [`Iter::layout`] reports it.
     pub fn iter<R: Rng>(&self, rng: R) -> Iter<N, R> {
+        self.iter_in(rng, Everywhere)
+    }
+
+    /// As [`iter`](Self::iter), with every new point inside `region`.
+    fn iter_in<R: Rng, G: Region<N>>(&self, rng: R, region: G) -> Iter<N, R, G> {
         let c = &self.config;
         Iter {
             rng,
+            region,
             domain: c.domain,
             grid: Grid::build(&self.plan, &c.domain, c.radius),
             active: Vec::new(),
@@ -319,6 +488,92 @@ impl<const N: usize> PoissonDisk<N> {
             ahead: OffsetBatch::new(),
             next_pick: [None; 2],
         }
+    }
+
+    /// Points in generation order, drawn from `rng`, that lie in `region`
+    /// and keep their distance `r` from the pre-placed points `fixed`
+    /// (as from each other): the guarantees hold for the union of `fixed`
+    /// and the points yielded. The pre-placed points are not yielded; they
+    /// count against the memory budget but not against the point cap.
+    ///
+    /// Growth starts from the pre-placed points in the domain (candidates
+    /// are thrown around them as around any point), or, if there are none,
+    /// from a uniform point of the region (up to `64·k` tries; none found,
+    /// the stream is empty). It reaches every part of the region within
+    /// `2r` hops of where it started: parts of a mask farther apart (islands)
+    /// need a pre-placed point, or a run of their own. `region(p) == true`
+    /// means a new point may lie at `p`; [`Everywhere`] is the whole box.
+    ///
+    /// # Errors
+    /// [`Error::InvalidFixedPoint`] naming the first pre-placed point that is
+    /// not finite, lies outside the domain, or lies closer than `r` to an
+    /// earlier one; [`Error::MemoryBudgetExceeded`] (with `points: 0`) if
+    /// the pre-placed points alone outgrow the budget.
+    ///
+    /// # Example: points in a disc, around two given points
+    /// ```
+    /// use bridson::{Domain, PoissonDisk2};
+    /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.05)?;
+    /// let disc = |p: &[f64; 2]| (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) < 0.16;
+    /// let fixed = [[0.5, 0.5], [0.6, 0.5]];
+    /// let points: Vec<[f64; 2]> = sampler.iter_with(7, disc, &fixed)?.collect();
+    /// assert!(points.len() > 100);
+    /// for p in &points {
+    ///     assert!(disc(p));
+    ///     for q in &fixed {
+    ///         assert!((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) >= 0.05 * 0.05);
+    ///     }
+    /// }
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    pub fn iter_with<G: Region<N>>(
+        &self,
+        seed: u64,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<Iter<N, DefaultRng, G>, Error> {
+        self.iter_with_rng(seeded_rng(seed), region, fixed)
+    }
+
+    /// As [`iter_with`](Self::iter_with), drawing from `rng`.
+    ///
+    /// # Errors
+    /// As [`iter_with`](Self::iter_with).
+    pub fn iter_with_rng<R: Rng, G: Region<N>>(
+        &self,
+        rng: R,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<Iter<N, R, G>, Error> {
+        let mut it = self.iter_in(rng, region);
+        for (index, p) in fixed.iter().enumerate() {
+            let bad = Error::InvalidFixedPoint { index };
+            if !all_finite(p) || !it.domain.contains(p) {
+                return Err(bad);
+            }
+            let stored = match &mut it.grid {
+                Grid::Dense(g) => place(g, &mut it.active, *p, it.budget),
+                Grid::Sparse(g) => place(g, &mut it.active, *p, it.budget),
+            };
+            match stored {
+                Stored::Yes => {}
+                Stored::NoRoom => return Err(bad),
+                Stored::OverBudget => {
+                    return Err(Error::MemoryBudgetExceeded {
+                        points: 0,
+                        budget: it.budget,
+                    });
+                }
+            }
+        }
+        if !fixed.is_empty() {
+            // Growth starts from the pre-placed points.
+            it.started = true;
+            if it.single_point {
+                it.active.clear();
+            }
+        }
+        Ok(it)
     }
 
     /// Points in generation order from [`DefaultRng`] seeded with `seed`:
@@ -355,9 +610,13 @@ impl<const N: usize> PoissonDisk<N> {
 /// the point cap is reached, or storing the next point would take the
 /// run's memory past the budget ([`error`](Self::error) then says so);
 /// stays ended ([`FusedIterator`]).
+///
+/// `G` is the region new points must lie in ([`Everywhere`] unless the run
+/// came from [`PoissonDisk::iter_with`]).
 #[derive(Debug)]
-pub struct Iter<const N: usize, R> {
+pub struct Iter<const N: usize, R, G = Everywhere> {
     rng: R,
+    region: G,
     domain: Domain<N>,
     grid: Grid<N>,
     /// Points that may still have room around them, stored inline.
@@ -381,7 +640,7 @@ pub struct Iter<const N: usize, R> {
     next_pick: [Option<usize>; 2],
 }
 
-impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
+impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
@@ -391,6 +650,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
         let point = if self.started {
             let Self {
                 rng,
+                region,
                 domain,
                 grid,
                 active,
@@ -405,6 +665,7 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
             } = self;
             let state = State {
                 rng,
+                region,
                 domain,
                 active,
                 candidates,
@@ -422,7 +683,16 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
             }
         } else {
             self.started = true;
-            let first = first_point(&self.domain, &mut self.rng);
+            let mut first = first_point(&self.domain, &mut self.rng);
+            // In a region: further uniform tries, up to 64·k in all.
+            let mut tries = 64 * u64::from(self.attempts);
+            while !self.region.admits(&first) {
+                tries -= 1;
+                if tries == 0 {
+                    return None;
+                }
+                first = first_point(&self.domain, &mut self.rng);
+            }
             let stored = match &mut self.grid {
                 Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
@@ -459,9 +729,9 @@ impl<const N: usize, R: Rng> Iterator for Iter<N, R> {
     }
 }
 
-impl<const N: usize, R: Rng> FusedIterator for Iter<N, R> {}
+impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Iter<N, R, G> {}
 
-impl<const N: usize, R> Iter<N, R> {
+impl<const N: usize, R, G> Iter<N, R, G> {
     /// Why the stream ended before the domain was full, if it did:
     /// [`Error::MemoryBudgetExceeded`] when storing the next point would
     /// have taken the run's memory past the budget. `None` while the stream
@@ -509,8 +779,9 @@ impl<const N: usize, R> Iter<N, R> {
 
 /// The parts of [`Iter`] the growth loop mutates, borrowed apart from the
 /// grid so the loop can be monomorphised per grid layout.
-struct State<'a, const N: usize, R> {
+struct State<'a, const N: usize, R, G> {
     rng: &'a mut R,
+    region: &'a G,
     domain: &'a Domain<N>,
     active: &'a mut Vec<[f64; N]>,
     candidates: &'a CandidateSampler<N>,
@@ -523,18 +794,18 @@ struct State<'a, const N: usize, R> {
     error: &'a mut Option<Error>,
 }
 
-impl<const N: usize, R: Rng> State<'_, N, R> {
+impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
     /// Bridson's loop up to the next accepted point, with a cache of
     /// `B` recent conflicts sized for the dimension.
     #[inline(always)]
-    fn grow<G: NeighbourGrid<N>>(self, grid: &mut G) -> Option<[f64; N]> {
+    fn grow<T: NeighbourGrid<N>>(self, grid: &mut T) -> Option<[f64; N]> {
         // How many conflicts a pick remembers: its active point's nearest
         // neighbours, then whatever the grid finds. 8 in 2-D (the 5×5
         // stencil rarely holds more); 16 from 3-D up (125 cells hold ~14).
         if N <= 2 {
-            self.grow_cached::<G, 8>(grid)
+            self.grow_cached::<T, 8>(grid)
         } else {
-            self.grow_cached::<G, 16>(grid)
+            self.grow_cached::<T, 16>(grid)
         }
     }
 
@@ -545,7 +816,7 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
     /// away, are remembered for the rest of the pick and checked first
     /// ([`ConflictCache`]); that changes no decision.
     #[inline(always)]
-    fn grow_cached<G: NeighbourGrid<N>, const B: usize>(self, grid: &mut G) -> Option<[f64; N]> {
+    fn grow_cached<T: NeighbourGrid<N>, const B: usize>(self, grid: &mut T) -> Option<[f64; N]> {
         let periodic = self.domain.any_periodic();
         let periods = self.domain.periods();
         let ahead = self.candidates.reads_ahead();
@@ -590,6 +861,10 @@ impl<const N: usize, R: Rng> State<'_, N, R> {
                 };
                 let mut candidate = add(&parent, &offset);
                 if !interior && !self.domain.wrap(&mut candidate) {
+                    continue;
+                }
+                // Compiled out for `Everywhere`.
+                if !self.region.admits(&candidate) {
                     continue;
                 }
                 let blocked = if periodic {
@@ -657,6 +932,20 @@ fn store<const N: usize, G: NeighbourGrid<N>>(
     }
     active.push(p);
     Stored::Yes
+}
+
+/// Stores a pre-placed point if no stored point lies closer than `r`
+/// (`NoRoom` otherwise), within the budget.
+fn place<const N: usize, T: NeighbourGrid<N>>(
+    grid: &mut T,
+    active: &mut Vec<[f64; N]>,
+    p: [f64; N],
+    budget: u64,
+) -> Stored {
+    if grid.conflict(&p).is_some() {
+        return Stored::NoRoom;
+    }
+    store(grid, active, p, budget)
 }
 
 /// A pick index drawn ahead, uniform over `0..bound` with `bound >= len`

@@ -579,7 +579,7 @@ fn a_point_cap_makes_the_huge_box_complete_from_json() {
     let capped: PoissonDisk2 = serde_json::from_str(json).expect("capped sampler fits");
     let n = assert_valid(&capped, 3, usize::MAX);
     assert_eq!(n, 1000, "{n} points, cap 1000");
-    let dense = json.replace("\"max_points\": 1000", "\"layout\": \"Dense\"");
+    let dense = json.replace("\"max_points\": 1000", "\"layout\": \"dense\"");
     let err = serde_json::from_str::<PoissonDisk2>(&dense).expect_err("dense: too large");
     assert!(
         err.to_string().contains("budget"),
@@ -779,6 +779,13 @@ fn display_messages_name_the_failed_condition() {
                 .expect_err("k too large"),
             vec!["attempts".into(), format!("at most {MAX_ATTEMPTS}")],
         ),
+        (
+            PoissonDisk2::builder(unit_square(), 0.1)
+                .max_points(-3)
+                .build()
+                .expect_err("negative cap"),
+            vec!["cap".into(), "negative".into()],
+        ),
     ];
     for (error, words) in cases {
         let message = error.to_string();
@@ -905,6 +912,53 @@ fn a_zero_cap_yields_nothing() {
         .expect("valid");
     assert_eq!(s.generate_seeded(1).unwrap().len(), 0, "cap 0");
     assert_eq!(s.iter_seeded(1).size_hint(), (0, Some(0)), "size_hint");
+}
+
+/// A cap takes the integers users hold, and a negative literal (the only
+/// negative count the types allow) is refused by `build`, not by the setter;
+/// a later valid cap clears it.
+#[test]
+fn a_negative_cap_is_refused_by_build() {
+    let builder = PoissonDisk2::builder(unit_square(), 0.1);
+    assert_eq!(
+        builder.max_points(-1).build(),
+        Err(Error::InvalidPointCount),
+        "max_points(-1)"
+    );
+    assert_eq!(
+        builder.max_points(i32::MIN).build(),
+        Err(Error::InvalidPointCount),
+        "max_points(i32::MIN)"
+    );
+    assert_eq!(
+        builder
+            .max_points(-1)
+            .max_points(5)
+            .build()
+            .map(|s| s.max_points()),
+        Ok(Some(5)),
+        "a later cap replaces the negative one"
+    );
+    let held: usize = 12;
+    for (cap, name) in [
+        (builder.max_points(held), "usize"),
+        (builder.max_points(12_u32), "u32"),
+        (builder.max_points(12), "literal"),
+        (builder.max_points(Some(12)), "Some"),
+    ] {
+        let s = cap.build().expect("valid");
+        assert_eq!(s.max_points(), Some(12), "{name}");
+        assert_eq!(s.generate_seeded(2).unwrap().len(), 12, "{name}");
+    }
+    assert_eq!(
+        builder
+            .max_points(3)
+            .max_points(None)
+            .build()
+            .map(|s| s.max_points()),
+        Ok(None),
+        "None clears a cap"
+    );
 }
 
 /// Name, `lo`, `hi`, periodic axes and radius.

@@ -4,8 +4,8 @@
 #![cfg(feature = "serde")]
 
 use bridson::{
-    Builder, Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout,
-    PoissonDisk, PoissonDisk2,
+    Builder, Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_GRID_BYTES, DEFAULT_MAX_WINDOW_BYTES,
+    Domain, Error, GridLayout, PoissonDisk, PoissonDisk2, Scheme, Tiled, TiledBuilder,
 };
 use serde_json::{Value, json};
 
@@ -62,8 +62,8 @@ fn poisson_disk_2d_round_trips() {
             "domain": {"lo": [-1.5, 0.25], "hi": [2.0, 3.0], "periodic": [true, false]},
             "radius": 0.125,
             "attempts": 12,
-            "candidates": "Sphere",
-            "layout": "Sparse",
+            "candidates": "sphere",
+            "layout": "sparse",
             "max_grid_bytes": 1 << 24,
             "max_points": 500,
         }),
@@ -139,41 +139,45 @@ fn domain_3d_round_trips() {
     );
 }
 
+/// Lower-case, as the `points` command line spells them
+/// (`--candidates sphere`); the capitalised Rust names are not accepted.
 #[test]
-fn enums_are_plain_strings() {
-    for (candidates, name) in [
-        (Candidates::Annulus, "\"Annulus\""),
-        (Candidates::Sphere, "\"Sphere\""),
-    ] {
-        assert_eq!(
-            serde_json::to_string(&candidates).expect("serialises"),
-            name,
-            "{candidates:?}"
-        );
-        assert_eq!(
-            serde_json::from_str::<Candidates>(name).expect("deserialises"),
-            candidates,
-            "{name}"
-        );
+fn enums_are_lower_case_strings() {
+    fn check<T>(cases: &[(T, &str)])
+    where
+        T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + core::fmt::Debug + Copy,
+    {
+        for &(value, name) in cases {
+            let quoted = format!("\"{name}\"");
+            assert_eq!(
+                serde_json::to_string(&value).expect("serialises"),
+                quoted,
+                "{value:?}"
+            );
+            assert_eq!(
+                serde_json::from_str::<T>(&quoted).expect("deserialises"),
+                value,
+                "{name}"
+            );
+            let capitalised = format!("\"{}{}\"", name[..1].to_uppercase(), &name[1..]);
+            assert!(
+                serde_json::from_str::<T>(&capitalised).is_err(),
+                "{capitalised} is not a value"
+            );
+        }
     }
-    for (layout, name) in [
-        (GridLayout::Auto, "\"Auto\""),
-        (GridLayout::Dense, "\"Dense\""),
-        (GridLayout::Sparse, "\"Sparse\""),
-    ] {
-        assert_eq!(
-            serde_json::to_string(&layout).expect("serialises"),
-            name,
-            "{layout:?}"
-        );
-        assert_eq!(
-            serde_json::from_str::<GridLayout>(name).expect("deserialises"),
-            layout,
-            "{name}"
-        );
-    }
+    check(&[
+        (Candidates::Annulus, "annulus"),
+        (Candidates::Sphere, "sphere"),
+    ]);
+    check(&[
+        (GridLayout::Auto, "auto"),
+        (GridLayout::Dense, "dense"),
+        (GridLayout::Sparse, "sparse"),
+    ]);
+    check(&[(Scheme::Sweep, "sweep"), (Scheme::Paper, "paper")]);
     assert!(
-        serde_json::from_str::<Candidates>("\"Disk\"").is_err(),
+        serde_json::from_str::<Candidates>("\"disk\"").is_err(),
         "unknown variant"
     );
 }
@@ -205,6 +209,52 @@ fn missing_optional_fields_get_defaults() {
     )
     .expect("valid");
     assert_eq!(sampler, built, "same as PoissonDisk::new");
+}
+
+#[test]
+fn periodic_defaults_to_all_bounded() {
+    let domain: Domain<3> =
+        serde_json::from_value(json!({"lo": [0.0, 0.0, 0.0], "hi": [1.0, 2.0, 3.0]}))
+            .expect("deserialises");
+    assert_eq!(
+        domain,
+        Domain::from_extent([1.0, 2.0, 3.0]).expect("box"),
+        "as Domain::new"
+    );
+    let minimal = json!({"domain": {"lo": [0.0, 0.0], "hi": [1.0, 1.0]}, "radius": 0.1});
+    let sampler: PoissonDisk2 = serde_json::from_value(minimal).expect("deserialises");
+    assert_eq!(sampler.domain().periodic(), [false; 2], "nested");
+}
+
+/// A misspelt field is an error naming it, never silently ignored
+/// (`"atempts": 5` once gave `k = 30`).
+#[test]
+fn unknown_fields_are_rejected() {
+    let misspelt = with_field("atempts", json!(5));
+    for message in [
+        error_of::<PoissonDisk2>(&misspelt),
+        error_of::<Builder<2>>(&misspelt),
+    ] {
+        assert_mentions(&message, &["unknown field", "atempts"]);
+    }
+    let domain = json!({"lo": [0.0], "hi": [1.0], "periodc": [true]});
+    assert_mentions(
+        &error_of::<Domain<1>>(&domain),
+        &["unknown field", "periodc"],
+    );
+    assert_mentions(
+        &error_of::<PoissonDisk<1>>(&json!({"domain": domain, "radius": 0.1})),
+        &["unknown field", "periodc"],
+    );
+    // Internal state is not a field either.
+    assert_mentions(
+        &error_of::<PoissonDisk2>(&with_field("negative_cap", json!(true))),
+        &["unknown field", "negative_cap"],
+    );
+    let tiled = json!({"width": 4, "height": 3, "per_pixel": 2.0, "sheme": "paper"});
+    for message in [error_of::<Tiled>(&tiled), error_of::<TiledBuilder>(&tiled)] {
+        assert_mentions(&message, &["unknown field", "sheme"]);
+    }
 }
 
 #[test]
@@ -297,7 +347,7 @@ fn wrong_array_length_is_rejected() {
 
 #[test]
 fn grid_over_budget_is_rejected() {
-    let dense_small_budget = with_field("layout", json!("Dense"));
+    let dense_small_budget = with_field("layout", json!("dense"));
     let mut v = dense_small_budget;
     v["radius"] = json!(0.001);
     v["max_grid_bytes"] = json!(1000);
@@ -308,7 +358,7 @@ fn grid_over_budget_is_rejected() {
     );
     let mut tiny_r = huge;
     tiny_r["radius"] = json!(1e-3);
-    tiny_r["layout"] = json!("Dense");
+    tiny_r["layout"] = json!("dense");
     assert_mentions(&error_of::<PoissonDisk2>(&tiny_r), &["budget"]);
 }
 
@@ -323,7 +373,170 @@ fn wrong_types_are_rejected() {
         "negative attempts"
     );
     assert!(
-        serde_json::from_value::<PoissonDisk2>(with_field("candidates", json!("Disk"))).is_err(),
+        serde_json::from_value::<PoissonDisk2>(with_field("candidates", json!("disk"))).is_err(),
         "unknown candidates"
+    );
+}
+
+// ---------------------------------------------------------------- Tiled
+
+/// Streams the first `pixels` pixels of `tiled` for `seed`.
+fn first_pixels(tiled: &Tiled, seed: u64, pixels: usize) -> Vec<bridson::Pixel> {
+    tiled.pixels_seeded(seed).take(pixels).collect()
+}
+
+#[test]
+fn tiled_round_trips_with_each_spacing() {
+    let builders = [
+        Tiled::builder(5, 4).radius(0.3).attempts(12),
+        Tiled::builder(5, 4)
+            .per_pixel(3.5)
+            .candidates(Candidates::Sphere)
+            .scheme(Scheme::Paper),
+        Tiled::builder(5, 4).exact(2).max_window_bytes(1 << 20),
+        Tiled::builder(5, 4).per_pixel(2.0).exact(3),
+    ];
+    for builder in builders {
+        let tiled = builder.build().expect("valid");
+        let text = serde_json::to_string(&tiled).expect("serialises");
+        let back: Tiled = serde_json::from_str(&text).expect("deserialises");
+        assert_eq!(back, tiled, "round trip through {text}");
+        assert_eq!(
+            first_pixels(&back, 9, 7),
+            first_pixels(&tiled, 9, 7),
+            "{text}: same configuration, same points"
+        );
+        let as_builder = serde_json::to_string(&builder).expect("serialises");
+        assert_eq!(as_builder, text, "a Tiled is written as its settings");
+        let read: TiledBuilder = serde_json::from_str(&text).expect("deserialises");
+        assert_eq!(read, builder, "builder round trip through {text}");
+        assert_eq!(tiled.to_builder(), builder, "to_builder");
+    }
+}
+
+#[test]
+fn tiled_serialised_form_is_the_documented_one() {
+    let tiled = Tiled::builder(64, 48)
+        .per_pixel(4.0)
+        .candidates(Candidates::Sphere)
+        .build()
+        .expect("valid");
+    assert_eq!(
+        serde_json::to_value(tiled).expect("serialises"),
+        json!({
+            "width": 64,
+            "height": 48,
+            "radius": null,
+            "per_pixel": 4.0,
+            "exact": null,
+            "attempts": 30,
+            "candidates": "sphere",
+            "scheme": "sweep",
+            "max_window_bytes": DEFAULT_MAX_WINDOW_BYTES,
+        }),
+        "serialised form"
+    );
+    let minimal: Tiled =
+        serde_json::from_value(json!({"width": 64, "height": 48, "per_pixel": 4.0}))
+            .expect("deserialises");
+    assert_eq!(
+        minimal,
+        Tiled::builder(64, 48)
+            .per_pixel(4.0)
+            .build()
+            .expect("valid"),
+        "absent fields take the builder's defaults"
+    );
+}
+
+/// Deserialising a `Tiled` runs `build`; a `TiledBuilder` is read
+/// unchecked, except for a spacing given twice, which it cannot hold.
+#[test]
+fn tiled_is_validated_on_deserialise() {
+    let cases = [
+        (
+            json!({"width": 0, "height": 3, "radius": 0.5}),
+            Error::EmptyRaster { axis: 0 },
+        ),
+        (
+            json!({"width": 3, "height": 0, "radius": 0.5}),
+            Error::EmptyRaster { axis: 1 },
+        ),
+        (
+            json!({"width": 3, "height": 3, "per_pixel": -1.0}),
+            Error::InvalidPerPixel,
+        ),
+        (
+            json!({"width": 3, "height": 3, "exact": 0}),
+            Error::InvalidPerPixel,
+        ),
+        (
+            json!({"width": 3, "height": 3, "radius": -0.5}),
+            Error::InvalidRadius,
+        ),
+        (json!({"width": 3, "height": 3}), Error::InvalidRadius),
+        (
+            json!({"width": 3, "height": 3, "radius": 0.5, "attempts": 0}),
+            Error::ZeroAttempts,
+        ),
+        (
+            json!({"width": 3, "height": 3, "radius": 0.5, "max_window_bytes": 10}),
+            Tiled::builder(3, 3)
+                .radius(0.5)
+                .max_window_bytes(10)
+                .build()
+                .expect_err("over budget"),
+        ),
+    ];
+    for (value, error) in cases {
+        let message = error_of::<Tiled>(&value);
+        assert_eq!(message, error.to_string(), "{value}");
+        let builder: TiledBuilder = serde_json::from_value(value.clone()).expect("unchecked");
+        assert_eq!(builder.build(), Err(error), "{value}: checked by build");
+    }
+    let both = json!({"width": 3, "height": 3, "radius": 0.5, "per_pixel": 2.0});
+    for message in [error_of::<Tiled>(&both), error_of::<TiledBuilder>(&both)] {
+        assert_mentions(&message, &["radius", "per_pixel", "not both"]);
+    }
+    let no_height = json!({"width": 3, "radius": 0.5});
+    assert_mentions(&error_of::<Tiled>(&no_height), &["height"]);
+}
+
+// ---------------------------------------------------------------- count mode
+
+/// Count mode is written as `about_points`; `radius` may then be left out,
+/// and a sampler read back derives the same radius.
+#[test]
+fn count_mode_round_trips() {
+    let domain = Domain::from_extent([2.0, 1.0]).expect("box");
+    let builder = PoissonDisk2::about_points(domain, 800).candidates(Candidates::Sphere);
+    assert_eq!(
+        serde_json::to_value(builder).expect("serialises"),
+        json!({
+            "domain": {"lo": [0.0, 0.0], "hi": [2.0, 1.0], "periodic": [false, false]},
+            "about_points": 800,
+            "attempts": 30,
+            "candidates": "sphere",
+            "layout": "auto",
+            "max_grid_bytes": DEFAULT_MAX_GRID_BYTES,
+            "max_points": null,
+        }),
+        "an unbuilt builder has no radius"
+    );
+    let sampler = builder.build().expect("valid");
+    let text = serde_json::to_string(&sampler).expect("serialises");
+    let back: PoissonDisk2 = serde_json::from_str(&text).expect("deserialises");
+    assert_eq!(back, sampler, "round trip through {text}");
+    assert_eq!(back.requested_count(), Some(800), "count kept");
+    let minimal: PoissonDisk2 = serde_json::from_value(json!({
+        "domain": {"lo": [0.0, 0.0], "hi": [2.0, 1.0]},
+        "about_points": 800,
+        "candidates": "sphere",
+    }))
+    .expect("deserialises");
+    assert_eq!(minimal, sampler, "no radius needed");
+    assert_mentions(
+        &error_of::<PoissonDisk2>(&with_field("about_points", json!(0))),
+        &["count"],
     );
 }

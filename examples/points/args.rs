@@ -13,8 +13,9 @@ type List<T> = Vec<T>;
 
 const ABOUT: &str = "\
 Poisson disk sampling (Bridson) of the box lo <= x < lo + extent: no two
-points closer than R. Points go to stdout (or --out) as they are generated;
-a one-line summary goes to stderr.
+points closer than R, or (--count N) about N points, the radius following
+from the box. Points go to stdout (or --out) as they are generated; a
+one-line summary goes to stderr.
 
 With --pixels, a W x H raster is streamed pixel by pixel (bridson::Tiled):
 points in raster coordinates, 0 <= x < W, 0 <= y < H, row 0 first; the
@@ -48,7 +49,7 @@ Examples:
     name = "points",
     about = ABOUT,
     after_help = AFTER,
-    override_usage = "points --dim D --radius R [OPTIONS]\n       \
+    override_usage = "points --dim D (--radius R | --count N) [OPTIONS]\n       \
                       points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]\n       \
                       points --pixels WxH --camera --spp N [--dims D] [--stream] [OPTIONS]",
     allow_negative_numbers = true,
@@ -59,8 +60,12 @@ pub(crate) struct Args {
     #[arg(long, value_name = "D", required_unless_present = "pixels")]
     dim: Option<usize>,
     /// Minimum distance between points
-    #[arg(long, value_name = "R", required_unless_present = "pixels")]
+    #[arg(long, value_name = "R", required_unless_present_any = ["pixels", "count"])]
     radius: Option<f64>,
+    /// About N points instead of a radius: the radius follows from the box
+    /// (count mode; within 2 % from 1000 points in 2-D and 3-D)
+    #[arg(long, value_name = "N", conflicts_with_all = ["radius", "pixels"])]
+    count: Option<u64>,
     /// Box size, exactly D values [default: all 1]
     #[arg(long, value_name = "A,B,..", value_parser = common::list::<f64>, allow_hyphen_values = true)]
     extent: Option<List<f64>>,
@@ -145,6 +150,8 @@ pub(crate) enum Format {
 pub(crate) struct Config {
     pub(crate) dim: usize,
     pub(crate) radius: f64,
+    /// `--count`: about this many points, instead of `radius`.
+    pub(crate) count: Option<u64>,
     pub(crate) extent: Option<Vec<f64>>,
     pub(crate) lo: Option<Vec<f64>>,
     /// One flag per axis (`dim` of them).
@@ -270,6 +277,7 @@ impl Args {
         Ok(Config {
             dim,
             radius: self.radius.unwrap_or(f64::NAN),
+            count: self.count,
             extent: self.extent,
             lo: self.lo,
             periodic,
@@ -317,6 +325,7 @@ mod tests {
         let expected = Config {
             dim: 2,
             radius: 0.01,
+            count: None,
             extent: Some(vec![1.0, 1.0]),
             lo: None,
             periodic: vec![false, false],
@@ -416,6 +425,21 @@ mod tests {
         );
         let negative = config("--dim 2 --radius 1 --lo -1,-2");
         assert_eq!(negative.lo, Some(vec![-1.0, -2.0]), "negative list");
+    }
+
+    #[test]
+    fn parses_a_count_instead_of_a_radius() {
+        let c = config("--dim 3 --count 5000 --extent 2,1,1 --periodic");
+        assert_eq!(c.count, Some(5000), "count");
+        assert!(c.radius.is_nan(), "no radius given");
+        for bad in [
+            "--dim 2 --count 100 --radius 0.1",
+            "--pixels 4x4 --count 100",
+            "--dim 2 --count -1",
+            "--dim 2 --count 1.5",
+        ] {
+            assert_eq!(error(bad).exit_code(), 2, "{bad}: exit code");
+        }
     }
 
     #[test]

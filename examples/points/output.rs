@@ -79,7 +79,11 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
             }
         })?
         .with_periodic(periodic);
-    PoissonDisk::<N>::builder(domain, config.radius)
+    let builder = match config.count {
+        Some(n) => PoissonDisk::<N>::about_points(domain, n),
+        None => PoissonDisk::<N>::builder(domain, config.radius),
+    };
+    builder
         .attempts(config.attempts)
         .max_points(config.max_points)
         .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
@@ -248,7 +252,11 @@ fn summary<const N: usize>(
         .ok()
         .and_then(|n| bridson::relative_radius::<N>(sampler.radius(), n, sampler.domain().volume()))
         .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
-    format!("points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}")
+    // Count mode: the radius was derived, so say which.
+    let derived = sampler
+        .requested_count()
+        .map_or_else(String::new, |_| format!(", radius {}", sampler.radius()));
+    format!("points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}{derived}")
 }
 
 #[cfg(test)]

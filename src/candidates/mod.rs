@@ -15,9 +15,11 @@ use rand::Rng;
 /// How candidate points are drawn around an active point.
 ///
 /// Both give a valid Poisson disk set; they differ in how densely it is
-/// packed and in how much each attempt costs.
+/// packed and in how much each attempt costs. With the `serde` feature the
+/// values are `"annulus"` and `"sphere"`, as on the `points` command line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 #[non_exhaustive]
 pub enum Candidates {
     /// Bridson's original: uniform **in volume** over the annulus (shell)

@@ -24,9 +24,11 @@ use crate::domain::Domain;
 use crate::error::Error;
 use crate::vector::unit_ball_volume;
 
-/// Which background grid layout the sampler uses.
+/// Which background grid layout the sampler uses. With the `serde` feature
+/// the values are `"auto"`, `"dense"` and `"sparse"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 #[non_exhaustive]
 pub enum GridLayout {
     /// Dense when `N <= 4` and the dense grid fits the memory budget,

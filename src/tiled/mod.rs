@@ -29,6 +29,8 @@
 //! Both keep the guarantee across pixel borders: every candidate is checked
 //! against every point within `r`, whichever pixel holds it.
 
+#[cfg(feature = "serde")]
+mod config;
 mod exact;
 mod grid;
 mod queue;
@@ -49,8 +51,11 @@ use window::{Window, WindowPlan};
 /// How the streaming mode builds each pixel.
 ///
 /// See [`Tiled`] for the streaming API; the module docs explain why the
-/// sweep has no border bias.
+/// sweep has no border bias. With the `serde` feature the values are
+/// `"sweep"` and `"paper"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 #[non_exhaustive]
 pub enum Scheme {
     /// One process swept across the image in scan order: no border bias.
@@ -93,6 +98,11 @@ pub const DEFAULT_MAX_WINDOW_BYTES: u64 = 1 << 28;
 /// # Ok::<(), bridson::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(try_from = "TiledBuilder", into = "TiledBuilder")
+)]
 pub struct Tiled {
     settings: TiledBuilder,
     radius: f64,
@@ -102,13 +112,27 @@ pub struct Tiled {
 /// How the spacing of a streamed set is given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Spacing {
+    /// None given yet: `build` refuses it as [`Error::InvalidRadius`]. A
+    /// variant rather than a NaN radius, so that settings equal themselves.
+    Unset,
     Radius(f64),
     PerPixel(f64),
 }
 
 /// The settings of a [`Tiled`] sampler, checked together by
 /// [`build`](Self::build).
+///
+/// With the `serde` feature this is the serialised form of a [`Tiled`]:
+/// `width` and `height` are required; the spacing is one of `radius` and
+/// `per_pixel`, and `exact` may come with either; absent fields take their
+/// defaults, and an unknown field is an error. Reading a builder checks
+/// nothing else; reading a [`Tiled`] runs [`build`](Self::build).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(try_from = "config::TiledRepr", into = "config::TiledRepr")
+)]
 pub struct TiledBuilder {
     width: u32,
     height: u32,
@@ -213,6 +237,7 @@ impl TiledBuilder {
         let radius = match (self.exact, self.spacing) {
             (Some(0), _) => return Err(Error::InvalidPerPixel),
             (Some(n), _) => (density / (OVERSAMPLE * f64::from(n))).sqrt(),
+            (None, Spacing::Unset) => return Err(Error::InvalidRadius),
             (None, Spacing::Radius(r)) => r,
             (None, Spacing::PerPixel(n)) if n > 0.0 && n.is_finite() => (density / n).sqrt(),
             (None, Spacing::PerPixel(_)) => return Err(Error::InvalidPerPixel),
@@ -263,13 +288,18 @@ impl Tiled {
         TiledBuilder {
             width,
             height,
-            spacing: Spacing::Radius(f64::NAN),
+            spacing: Spacing::Unset,
             attempts: crate::DEFAULT_ATTEMPTS,
             candidates: Candidates::default(),
             scheme: Scheme::default(),
             max_window_bytes: DEFAULT_MAX_WINDOW_BYTES,
             exact: None,
         }
+    }
+
+    /// The settings this sampler was built from, to adjust and rebuild.
+    pub fn to_builder(&self) -> TiledBuilder {
+        self.settings
     }
 
     /// The minimum distance actually used, in pixels.
