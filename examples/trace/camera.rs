@@ -28,8 +28,10 @@ impl Camera {
     /// image of `size` pixels.
     pub(crate) fn pinhole(eye: V3, target: V3, fov_degrees: f64, size: [u32; 2]) -> Self {
         let forward = (target - eye).unit();
-        let right = forward.cross(V3(0.0, 1.0, 0.0)).unit();
-        let down = forward.cross(right);
+        // pbrt's convention: looking down +z with y up, +x is to the right
+        // (a left-handed frame on the film).
+        let right = V3(0.0, 1.0, 0.0).cross(forward).unit();
+        let down = right.cross(forward);
         let half_h = (fov_degrees.to_radians() / 2.0).tan();
         let half_w = half_h * f64::from(size[0]) / f64::from(size[1]);
         Self {
@@ -157,9 +159,12 @@ mod tests {
             (ray.direction - V3(0.0, 0.0, 1.0)).length() < 1e-12,
             "{ray:?}"
         );
-        // The top row looks up: y grows going up, rows grow going down.
+        // The top row looks up (rows grow going down); the right column
+        // towards +x.
         let top = camera.ray([32, 0], &centre);
         assert!(top.direction.1 > 0.0, "{top:?}");
+        let right = camera.ray([63, 24], &centre);
+        assert!(right.direction.0 > 0.0, "{right:?}");
         let lens = camera.with_lens(0.5, 5.0);
         for u in [[0.1, 0.2], [0.9, 0.5], [0.5, 0.95]] {
             let r = lens.ray([10, 7], &CameraSample { lens: u, ..centre });

@@ -168,8 +168,8 @@ fn crop_centre(scene: &str) -> [f64; 2] {
     match scene {
         "figure" => [0.58, 0.72],
         "dof" => [0.3, 0.62],
-        "checker" => [0.62, 0.2],
-        "motion" => [0.45, 0.45],
+        "checker" => [0.6, 0.42],
+        "motion" => [0.45, 0.5],
         _ => [0.5, 0.5],
     }
 }
@@ -208,7 +208,7 @@ pub(crate) fn montage(
     out.text(
         i64::from(GAP),
         4,
-        &format!("{scene}, {spp} samples per pixel; crop magnified 4x; |error| 0 (black) to 3x the median RMSE (white)"),
+        &format!("{scene}, {spp} samples per pixel. Crop magnified 4x. |error| from 0 (black) to 3x the median RMSE (white)"),
         1,
         BLACK,
     );

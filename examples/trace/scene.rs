@@ -475,7 +475,7 @@ pub(crate) fn motion(size: [u32; 2]) -> Scene {
     ];
     Scene {
         name: "motion",
-        camera: Camera::pinhole(V3(0.0, 1.3, -5.0), V3(0.0, 0.8, 0.0), 38.0, size),
+        camera: Camera::pinhole(V3(0.0, 1.6, -5.0), V3(0.0, 0.6, 0.0), 38.0, size),
         objects,
         light: None,
         shading: Shading::Headlight {
