@@ -57,6 +57,14 @@ fn main() -> ExitCode {
     common::finish("trace", run(&args))
 }
 
+/// Writes `text` to stdout at once (the table of a scene as it finishes).
+fn say(text: &str) -> Result<(), Failure> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| Failure::Io(format!("writing the table: {e}")))
+}
+
 fn run(args: &args::Args) -> Result<(), Failure> {
     if args.seeds < 2 && args.reference_spp > 0 {
         return Err(Failure::Usage(
@@ -76,6 +84,14 @@ fn run(args: &args::Args) -> Result<(), Failure> {
         + f64::from(args.seeds)
             * samplers.len() as f64
             * args.spp.iter().map(|&n| f64::from(n)).sum::<f64>();
+    say(&format!(
+        "Size {}x{}, {} seeds, {threads} threads; RMSE against a {} reference at {} spp.\n",
+        size[0],
+        size[1],
+        args.seeds,
+        study::REFERENCE_SAMPLER,
+        args.reference_spp
+    ))?;
     let mut progress = Progress::new("trace", per_scene * pixels * scenes.len() as f64);
     let mut done = 0.0;
     let mut rows = Vec::new();
@@ -143,30 +159,24 @@ fn run(args: &args::Args) -> Result<(), Failure> {
                 report::save(&montage, &dir.join(format!("montage-{name}-{spp}.png")))?;
             }
         }
+        // Each scene's results as soon as they are in, so that a long study
+        // stopped part-way keeps what it has measured.
+        let scene_rows: Vec<study::Row> =
+            rows.iter().filter(|r| &r.scene == name).cloned().collect();
+        say(&format!("\n{}", report::table(&scene_rows)))?;
+        if let Some(path) = &args.json {
+            common::write_results_json(path, &report::json(&rows))?;
+        }
         if let Some(r) = reference {
             references.push((name.clone(), r));
         }
     }
     progress.finish();
-    let mut text = format!(
-        "Size {}x{}, {} seeds, {threads} threads; RMSE against a {} reference at {} spp.\n\n",
-        size[0],
-        size[1],
-        args.seeds,
-        study::REFERENCE_SAMPLER,
-        args.reference_spp
-    );
-    text.push_str(&report::table(&rows));
     if !references.is_empty() {
-        text.push('\n');
-        text.push_str(&report::reference_table(&references, &rows));
-    }
-    std::io::stdout()
-        .lock()
-        .write_all(text.as_bytes())
-        .map_err(|e| Failure::Io(format!("writing the table: {e}")))?;
-    if let Some(path) = &args.json {
-        common::write_results_json(path, &report::json(&rows))?;
+        say(&format!(
+            "\n{}",
+            report::reference_table(&references, &rows)
+        ))?;
     }
     Ok(())
 }
