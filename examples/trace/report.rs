@@ -1,7 +1,7 @@
 //! What the study shows: the markdown tables, the JSON, a PNG per render
 //! and a montage per scene laid out like the paper's figures.
 
-use crate::canvas::{BLACK, Canvas, Rect, Rgb, WHITE, channel};
+use crate::canvas::{BLACK, Canvas, Rect, Rgb, WHITE, channel, floor_i64};
 use crate::common::Failure;
 use crate::render::Image;
 use crate::study::{Reference, Row};
@@ -149,9 +149,9 @@ fn error_map(image: &Image, truth: &Image, scale: f64) -> Canvas {
 /// height around `centre` (fractions of the image), scaled up four times.
 fn crop(c: &Canvas, image: &Image, centre: [f64; 2]) -> Canvas {
     let (cw, ch) = ((image.width / 4).max(1), (image.height / 4).max(1));
-    let x0 = ((centre[0] * f64::from(image.width)) as i64 - i64::from(cw / 2))
+    let x0 = (floor_i64(centre[0] * f64::from(image.width)) - i64::from(cw / 2))
         .clamp(0, i64::from(image.width - cw));
-    let y0 = ((centre[1] * f64::from(image.height)) as i64 - i64::from(ch / 2))
+    let y0 = (floor_i64(centre[1] * f64::from(image.height)) - i64::from(ch / 2))
         .clamp(0, i64::from(image.height - ch));
     let mut out = Canvas::new(cw, ch, BLACK);
     for y in 0..i64::from(ch) {

@@ -157,7 +157,7 @@ fn joint_radius(spp: u32) -> Result<f64, String> {
         let mut total = 0_usize;
         for seed in 0..16 {
             total += disk
-                .generate_seeded(hash(&[0x6a6f_696e_74, u64::from(spp), seed]))
+                .generate_seeded(hash(&[0x006a_6f69_6e74, u64::from(spp), seed]))
                 .map_err(|e| e.to_string())?
                 .len();
         }
@@ -250,7 +250,7 @@ impl PixelFiller {
         }
         let pixel_seed = hash(&[
             seed,
-            0x7069_7865_6c,
+            0x0070_6978_656c,
             u64::from(pixel[0]),
             u64::from(pixel[1]),
         ]);
@@ -294,7 +294,7 @@ impl PixelFiller {
         if self.by_count.len() <= index {
             self.by_count.resize(index + 1, None);
         }
-        let seed = hash(&[self.recipe.seed, 0x6c69_6768_74]);
+        let seed = hash(&[self.recipe.seed, 0x006c_6967_6874]);
         let slot = &mut self.by_count[index];
         if slot.is_none() {
             *slot = PoissonPixelSampler::new(count, seed).ok();

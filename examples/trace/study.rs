@@ -83,20 +83,20 @@ pub(crate) fn reference(
         ))
     });
     let pixels = size[0] as usize * size[1] as usize;
-    if let Some(bytes) = file.as_ref().and_then(|f| std::fs::read(f).ok()) {
-        if bytes.len() == 2 * 8 * pixels {
-            let floats: Vec<f64> = bytes
-                .chunks_exact(8)
-                .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                .collect();
-            let (a, b) = floats.split_at(pixels);
-            let image = |values: &[f64]| Image {
-                width: size[0],
-                height: size[1],
-                values: values.to_vec(),
-            };
-            return Ok(Reference::from_halves(spp, &image(a), &image(b), 0.0));
-        }
+    if let Some(bytes) = file.as_ref().and_then(|f| std::fs::read(f).ok())
+        && bytes.len() == 2 * 8 * pixels
+    {
+        let floats: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+            .collect();
+        let (a, b) = floats.split_at(pixels);
+        let image = |values: &[f64]| Image {
+            width: size[0],
+            height: size[1],
+            values: values.to_vec(),
+        };
+        return Ok(Reference::from_halves(spp, &image(a), &image(b), 0.0));
     }
     let mut halves = Vec::new();
     let mut seconds = 0.0;
