@@ -256,6 +256,22 @@ fn capsule(a: V3, b: V3, radius: f64) -> Shape {
 
 const UP: V3 = V3(0.0, 1.0, 0.0);
 
+/// The floor of `dof` and `motion`: the plane y = 0 in squares of 0.5.
+fn checkered_floor() -> Object {
+    Object {
+        shape: Shape::Plane {
+            point: V3::default(),
+            normal: UP,
+        },
+        texture: Texture::Checker {
+            size: 0.5,
+            axes: [0, 2],
+            dark: 0.15,
+            light: 0.8,
+        },
+    }
+}
+
 /// The stand-in for the paper's Buddha (Fig. 2): a seated figure of 15
 /// analytic primitives on a plinth and a floor, lit from above by one quad
 /// light. Curved silhouettes (head, torso, arms), self-occlusion (arms over
@@ -356,18 +372,7 @@ pub(crate) fn dof(size: [u32; 2]) -> Scene {
         light: 0.9,
     };
     let objects = vec![
-        Object {
-            shape: Shape::Plane {
-                point: V3::default(),
-                normal: UP,
-            },
-            texture: Texture::Checker {
-                size: 0.5,
-                axes: [0, 2],
-                dark: 0.15,
-                light: 0.8,
-            },
-        },
+        checkered_floor(),
         Object {
             shape: Shape::Quad {
                 corner: V3(-6.0, 0.0, 5.0),
@@ -438,18 +443,7 @@ pub(crate) fn checker(size: [u32; 2]) -> Scene {
 /// still one beside it, over a checkered floor.
 pub(crate) fn motion(size: [u32; 2]) -> Scene {
     let objects = vec![
-        Object {
-            shape: Shape::Plane {
-                point: V3::default(),
-                normal: UP,
-            },
-            texture: Texture::Checker {
-                size: 0.5,
-                axes: [0, 2],
-                dark: 0.15,
-                light: 0.8,
-            },
-        },
+        checkered_floor(),
         Object {
             shape: Shape::Sphere {
                 centre: V3(-1.4, 0.9, 0.0),
