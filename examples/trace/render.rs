@@ -145,14 +145,14 @@ mod tests {
     #[test]
     fn images_do_not_depend_on_the_thread_count() {
         for scene_name in SCENES {
-            let scene = Scene::by_name(scene_name, [13, 11]).expect("known scene");
+            let scene = Scene::by_name(scene_name, [9, 7]).expect("known scene");
             for name in [
                 "poisson-pixel",
                 "poisson-sweep",
                 "poisson-paper",
                 "poisson-joint",
             ] {
-                let recipe = Recipe::new(name, 4, 9, [13, 11]).expect("builds");
+                let recipe = Recipe::new(name, 2, 9, [9, 7]).expect("builds");
                 let one = render(&scene, &recipe, 1, &mut |_| {}).expect("renders");
                 let two = render(&scene, &recipe, 2, &mut |_| {}).expect("renders");
                 let bits = |r: &Rendered| {

@@ -345,7 +345,7 @@ mod tests {
 
     #[test]
     fn the_joint_radius_gives_about_spp_points() {
-        for spp in [4, 16] {
+        for spp in [3, 8] {
             let recipe = Recipe::new("poisson-joint", spp, 1, [4, 4]).expect("builds");
             let mut filler = recipe.filler().expect("builds");
             let mut total = 0;
@@ -370,12 +370,12 @@ mod tests {
     #[test]
     fn every_name_makes_samples_in_the_unit_square() {
         for name in names() {
-            let recipe = Recipe::new(name, 8, 3, [6, 4]).expect("builds");
+            let recipe = Recipe::new(name, 3, 3, [5, 3]).expect("builds");
             let mut stream = recipe.film_stream().expect("builds");
             let mut filler = recipe.filler().expect("builds");
             let mut out = Vec::new();
-            for y in 0..4 {
-                for x in 0..6 {
+            for y in 0..3 {
+                for x in 0..5 {
                     if let Some(stream) = &mut stream {
                         assert_eq!(
                             stream.next_into(&mut out),
@@ -397,7 +397,7 @@ mod tests {
                         );
                     }
                     if !NATURAL.contains(&name) {
-                        assert_eq!(out.len(), 8, "{name}: exact count");
+                        assert_eq!(out.len(), 3, "{name}: exact count");
                     }
                 }
             }
