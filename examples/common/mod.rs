@@ -16,7 +16,11 @@
 /// compare with the crate's Poisson samplers.
 pub(crate) mod samplers;
 
+/// A progress bar with the time left, for long runs.
+pub(crate) mod progress;
+
 use std::io::{self, Write};
+use std::path::Path;
 use std::process::ExitCode;
 use std::str::FromStr;
 
@@ -114,6 +118,20 @@ impl From<CandidatesArg> for bridson::Candidates {
             CandidatesArg::Sphere => Self::Sphere,
         }
     }
+}
+
+/// Writes `{"results": [..]}` to `path`, one result a line (small, and
+/// readable in a diff).
+///
+/// # Errors
+/// [`Failure::Io`] if writing fails.
+pub(crate) fn write_results_json(
+    path: &Path,
+    results: &[serde_json::Value],
+) -> Result<(), Failure> {
+    let lines: Vec<String> = results.iter().map(|r| format!("  {r}")).collect();
+    let text = format!("{{\"results\": [\n{}\n]}}\n", lines.join(",\n"));
+    std::fs::write(path, text).map_err(|e| Failure::Io(format!("writing {}: {e}", path.display())))
 }
 
 /// Peak resident set size of this process in MiB (`VmHWM` in

@@ -83,21 +83,14 @@ pub(crate) fn json(series: &[Series], trials: u32) -> serde_json::Value {
     serde_json::json!({ "results": results })
 }
 
-/// Writes the JSON document to `path`, one result a line (small, and
-/// readable in a diff).
+/// Writes the JSON document to `path`, one result a line.
 ///
 /// # Errors
 /// [`Failure::Io`] if writing fails.
 pub(crate) fn write_json(path: &Path, series: &[Series], trials: u32) -> Result<(), Failure> {
     let doc = json(series, trials);
-    let lines: Vec<String> = doc["results"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .map(|r| format!("  {r}"))
-        .collect();
-    let text = format!("{{\"results\": [\n{}\n]}}\n", lines.join(",\n"));
-    std::fs::write(path, text).map_err(|e| Failure::Io(format!("writing {}: {e}", path.display())))
+    let results = doc["results"].as_array().cloned().unwrap_or_default();
+    crate::common::write_results_json(path, &results)
 }
 
 /// The chart of one integrand: every sampler's curve, labelled with its
