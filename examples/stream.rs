@@ -20,7 +20,7 @@
 mod common;
 
 use crate::common::{peak_rss_mib, status_mib};
-use bridson::{Domain, PoissonDisk, Scheme, Tiled, relative_radius};
+use bridson::{Domain, ExactMethod, PoissonDisk, Scheme, Tiled, relative_radius};
 use clap::{Parser, ValueEnum};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -51,9 +51,31 @@ struct Args {
     /// Exactly N points in every pixel
     #[arg(long, value_name = "N")]
     exact: Option<u32>,
+    /// Exact mode: how excess points are dropped
+    #[arg(long, value_name = "METHOD", value_enum, default_value_t = MethodArg::Eliminate)]
+    method: MethodArg,
+    /// Exact mode: the sweep's points per pixel over N
+    #[arg(long, value_name = "S", default_value_t = 1.25)]
+    oversample: f64,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
+}
+
+/// `--method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    Eliminate,
+    Random,
+}
+
+impl From<MethodArg> for ExactMethod {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Eliminate => Self::Eliminate,
+            MethodArg::Random => Self::Random,
+        }
+    }
 }
 
 /// `--scheme`.
@@ -230,7 +252,10 @@ fn main() -> ExitCode {
     for scheme in args.scheme.list() {
         let builder = Tiled::builder(width, height).scheme(scheme);
         let builder = match (args.exact, args.radius) {
-            (Some(n), _) => builder.exact(n),
+            (Some(n), _) => builder
+                .exact(n)
+                .exact_method(args.method.into())
+                .exact_oversample(args.oversample),
             (None, Some(r)) => builder.radius(r),
             (None, None) => builder.per_pixel(args.per_pixel),
         };

@@ -168,7 +168,9 @@ pub use crate::render::{
 pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2, PoissonDisk3,
 };
-pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
+pub use crate::tiled::{
+    DEFAULT_MAX_WINDOW_BYTES, ExactMethod, Pixel, Pixels, Scheme, Tiled, TiledBuilder,
+};
 pub use rand;
 
 /// The README's examples, run as doctests.

@@ -37,7 +37,8 @@ use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::sampler::check_radius_and_attempts;
 use crate::vector::add;
 use core::iter::FusedIterator;
-use exact::{OVERSAMPLE, Thinning};
+pub use exact::ExactMethod;
+use exact::{DEFAULT_OVERSAMPLE, Exact};
 use queue::BandQueue;
 use rand::Rng;
 use window::{Window, WindowPlan};
@@ -115,22 +116,49 @@ pub struct TiledBuilder {
     max_window_bytes: u64,
     /// Exact mode: exactly this many points in every pixel.
     exact: Option<u32>,
+    /// Exact mode: how excess points are dropped.
+    exact_method: ExactMethod,
+    /// Exact mode: the sweep's points per pixel over `n`.
+    exact_oversample: f64,
 }
 
 impl TiledBuilder {
     /// Exact mode: exactly `n` points in every pixel (overrides the
-    /// spacing). The sweep runs at the radius that gives about `2n` points
-    /// per pixel and each pixel is thinned to `n` by weighted sample
-    /// elimination (Yuksel 2015) against its neighbours; see
-    /// [`Pixels::top_ups`] for the rare pixels that need extra points. The
-    /// minimum distance is then that of the oversampled set,
-    /// [`Tiled::radius`], except around top-ups.
+    /// spacing). The sweep runs at the radius that gives about `s·n` points
+    /// per pixel (`s` from [`exact_oversample`](Self::exact_oversample),
+    /// 1.25 by default) and each row is thinned to `n` per pixel (see
+    /// [`exact_method`](Self::exact_method)). A pixel the sweep left short
+    /// gets darts at least [`Tiled::radius`] from every point kept, room
+    /// made by removing points of neighbouring pixels that have more than
+    /// `n`. So the minimum distance is the sweep's radius,
+    /// [`Tiled::radius`], except around top-ups: darts placed closer
+    /// because no room could be made, which [`Pixels::top_ups`] counts (none
+    /// in our runs).
     ///
     /// Exact mode always uses [`Scheme::Sweep`]: it thins whole rows
     /// jointly (see the `exact` module docs in the source).
     #[must_use]
     pub fn exact(mut self, n: u32) -> Self {
         self.exact = Some(n);
+        self
+    }
+
+    /// Exact mode: how a pixel's excess points are dropped (default
+    /// [`ExactMethod::Eliminate`]). Ignored outside exact mode.
+    #[must_use]
+    pub fn exact_method(mut self, method: ExactMethod) -> Self {
+        self.exact_method = method;
+        self
+    }
+
+    /// Exact mode: the oversampling `s`, the sweep's points per pixel over
+    /// the `n` kept (default 1.25, from 1 to 16). The kept set's relative
+    /// radius ρ is about 0.73 / √s (0.65 at the default); a larger `s`
+    /// leaves fewer pixels short and gives elimination more choice, at the
+    /// cost of speed. Ignored outside exact mode.
+    #[must_use]
+    pub fn exact_oversample(mut self, s: f64) -> Self {
+        self.exact_oversample = s;
         self
     }
 
@@ -184,7 +212,8 @@ impl TiledBuilder {
     /// # Errors
     /// [`Error::EmptyRaster`] if the width (axis 0) or height (axis 1) is
     /// 0; [`Error::InvalidPerPixel`] if the samples per pixel are not a
-    /// positive finite number, or exact mode asks for 0 points per pixel;
+    /// positive finite number, or exact mode asks for 0 points per pixel or
+    /// an oversampling outside `1.0 ..= 16.0`;
     /// [`Error::InvalidRadius`] if the radius — given, or derived from the
     /// samples per pixel — is NaN, infinite, `<= 0` or outside
     /// `1e-150 ..= 1e150`, or if no spacing was given; [`Error::ZeroAttempts`]
@@ -208,7 +237,10 @@ impl TiledBuilder {
         };
         let radius = match (self.exact, self.spacing) {
             (Some(0), _) => return Err(Error::InvalidPerPixel),
-            (Some(n), _) => (density / (OVERSAMPLE * f64::from(n))).sqrt(),
+            (Some(_), _) if !(1.0..=16.0).contains(&self.exact_oversample) => {
+                return Err(Error::InvalidPerPixel);
+            }
+            (Some(n), _) => (density / (self.exact_oversample * f64::from(n))).sqrt(),
             (None, Spacing::Radius(r)) => r,
             (None, Spacing::PerPixel(n)) if n > 0.0 && n.is_finite() => (density / n).sqrt(),
             (None, Spacing::PerPixel(_)) => return Err(Error::InvalidPerPixel),
@@ -258,6 +290,8 @@ impl Tiled {
             scheme: Scheme::default(),
             max_window_bytes: DEFAULT_MAX_WINDOW_BYTES,
             exact: None,
+            exact_method: ExactMethod::default(),
+            exact_oversample: DEFAULT_OVERSAMPLE,
         }
     }
 
@@ -308,10 +342,10 @@ impl Tiled {
             radius_squared: self.radius * self.radius,
             started: false,
             next: 0,
-            thinning: s
+            exact: s
                 .exact
                 .and_then(|n| usize::try_from(n).ok())
-                .map(Thinning::new),
+                .map(|n| Exact::new(n, s.exact_method, self.radius)),
             top_ups: 0,
         }
     }
@@ -349,7 +383,7 @@ pub struct Pixels<R> {
     /// Index of the next pixel in scan order.
     next: usize,
     /// Exact mode's elimination.
-    thinning: Option<Thinning>,
+    exact: Option<Exact>,
     top_ups: u64,
 }
 
@@ -381,18 +415,16 @@ impl<R: Rng> Pixels<R> {
         if x == 0 {
             self.window.advance_to_row(y);
         }
-        match (self.scheme, self.thinning) {
-            // Exact mode always sweeps: it thins whole rows.
-            (Scheme::Paper, None) => self.finish_alone(x, y),
-            (_, thinning) if x == 0 => {
-                self.finish_row(y);
-                if let Some(thinning) = thinning {
-                    let dims = (self.width, self.height);
-                    let placed = thinning.thin_row(&mut self.window, y, dims, &mut self.rng);
-                    self.top_ups += placed as u64;
-                }
+        // Exact mode always sweeps: it thins whole rows.
+        if self.scheme == Scheme::Paper && self.exact.is_none() {
+            self.finish_alone(x, y);
+        } else if x == 0 {
+            self.finish_row(y);
+            if let Some(exact) = &mut self.exact {
+                let dims = (self.width, self.height);
+                let placed = exact.thin_row(&mut self.window, y, dims, &mut self.rng);
+                self.top_ups += placed as u64;
             }
-            _ => {}
         }
         self.next += 1;
         Some((x, y))

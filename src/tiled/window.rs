@@ -223,6 +223,12 @@ impl Window {
         self.grid.seed(p, limit, take);
     }
 
+    /// Stores exact mode's dart `p` in the grid only (see
+    /// `RollingGrid::replace`), so that the sweep keeps its distance from it.
+    pub(crate) fn replace(&mut self, p: [f64; 2]) {
+        self.grid.replace(p);
+    }
+
     /// Stores `p` in the grid and in its pixel's points, and in its
     /// pixel's active list if `active` (the paper's scheme keeps one per
     /// pixel; the sweep's queue holds its own). Returns `false` (storing nothing) if its cell is taken, which only
