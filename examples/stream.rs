@@ -57,9 +57,20 @@ struct Args {
     /// Exact mode: the sweep's points per pixel over N
     #[arg(long, value_name = "S", default_value_t = 1.25)]
     oversample: f64,
+    /// Exact mode: edge correction BX,BY [default: the calibrated one]
+    #[arg(long, value_name = "BX,BY", value_parser = pair)]
+    bias: Option<[f64; 2]>,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
+}
+
+/// Two numbers `a,b`, for `--bias`.
+fn pair(text: &str) -> Result<[f64; 2], String> {
+    match common::list::<f64>(text)?.as_slice() {
+        &[a, b] => Ok([a, b]),
+        _ => Err(format!("expected two numbers a,b, got '{text}'")),
+    }
 }
 
 /// `--method`.
@@ -236,6 +247,13 @@ impl Stats {
         // the pixel frequency: ≈ 1 for no structure, ≫ 1 for a pixel pattern.
         let power = |(c, s): (f64, f64)| (c * c + s * s) / n;
         println!(
+            "  first harmonic of the in-pixel density (cos, sin): x {:+.4} {:+.4}, y {:+.4} {:+.4}",
+            2.0 * self.pixel_frequency[0].0 / n,
+            -2.0 * self.pixel_frequency[0].1 / n,
+            2.0 * self.pixel_frequency[1].0 / n,
+            -2.0 * self.pixel_frequency[1].1 / n
+        );
+        println!(
             "  power at the pixel frequency (1 = no structure): x {:.2}, y {:.2}",
             power(self.pixel_frequency[0]),
             power(self.pixel_frequency[1])
@@ -252,10 +270,16 @@ fn main() -> ExitCode {
     for scheme in args.scheme.list() {
         let builder = Tiled::builder(width, height).scheme(scheme);
         let builder = match (args.exact, args.radius) {
-            (Some(n), _) => builder
-                .exact(n)
-                .exact_method(args.method.into())
-                .exact_oversample(args.oversample),
+            (Some(n), _) => {
+                let b = builder
+                    .exact(n)
+                    .exact_method(args.method.into())
+                    .exact_oversample(args.oversample);
+                match args.bias {
+                    Some(beta) => b.exact_edge_bias(beta),
+                    None => b,
+                }
+            }
             (None, Some(r)) => builder.radius(r),
             (None, None) => builder.per_pixel(args.per_pixel),
         };
