@@ -58,18 +58,18 @@ struct Args {
     #[arg(long, value_name = "S", default_value_t = 1.25)]
     oversample: f64,
     /// Exact mode: edge correction BX,BY [default: the calibrated one]
-    #[arg(long, value_name = "BX,BY", value_parser = pair)]
-    bias: Option<[f64; 2]>,
+    #[arg(long, value_name = "BX,BY,GY", value_parser = triple)]
+    bias: Option<[f64; 3]>,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
 }
 
-/// Two numbers `a,b`, for `--bias`.
-fn pair(text: &str) -> Result<[f64; 2], String> {
+/// Three numbers `a,b,c`, for `--bias`.
+fn triple(text: &str) -> Result<[f64; 3], String> {
     match common::list::<f64>(text)?.as_slice() {
-        &[a, b] => Ok([a, b]),
-        _ => Err(format!("expected two numbers a,b, got '{text}'")),
+        &[a, b, c] => Ok([a, b, c]),
+        _ => Err(format!("expected three numbers a,b,c, got '{text}'")),
     }
 }
 

@@ -336,7 +336,12 @@ fn exact_zero_is_an_error() {
             "oversample {s}"
         );
     }
-    for b in [[0.6, 0.0], [0.0, -0.6], [f64::NAN, 0.0]] {
+    for b in [
+        [0.6, 0.0, 0.0],
+        [0.0, -0.6, 0.0],
+        [0.0, 0.0, 0.7],
+        [f64::NAN, 0.0, 0.0],
+    ] {
         assert_eq!(
             Tiled::builder(4, 4)
                 .exact(4)

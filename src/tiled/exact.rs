@@ -92,25 +92,31 @@ pub enum ExactMethod {
     Random,
 }
 
-/// The edge correction `[βx, βy]` that zeroes the first harmonic of the
-/// kept density across a pixel at the default oversampling, measured with
-/// `examples/stream.rs --exact N --method M --bias 0,0` and `--bias
-/// 0.2,0.2` on about 10⁶ points (512², 256², 128² pixels for `n` = 4, 16,
-/// 64; the harmonic is linear in β): linear in `n` between those, the
-/// `n = 4` values below (at `n = 1` no β helps: a quarter of the pixels
-/// are short there), the `n = 64` values above. The `y` values differ
-/// from the `x` ones because rows are thinned in order, columns together.
-fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 2] {
-    let table: [(f64, [f64; 2]); 3] = match method {
+/// The edge correction `[βx, βy, γ]` (see [`Exact::edge_factor`]) that
+/// zeroes the first harmonic of the kept density across a pixel at the
+/// default oversampling, measured with `examples/stream.rs --exact N
+/// --method M` and `--bias` at two settings each, on about 10⁶ points
+/// (512², 256², 128² pixels for `n` = 4, 16, 64; the harmonic is linear in
+/// each): β from `0,0,0` and `0.2,0.2,0`, then γ from `βx,βy,0` and
+/// `βx,βy,0.1` (for elimination at `n = 4`, refined from two seeds at two
+/// more settings, the response being less linear). Linear in `n` between those, the `n = 4` values below (at
+/// `n = 1` no β helps: a quarter of the pixels are short there), the
+/// `n = 64` values above. `y` differs from `x` because rows are settled in
+/// order and columns together: darts take room from the row below (γ < 0),
+/// and elimination sees the rows above settled and the row below
+/// oversampled. Other oversamplings keep these values, which then fit less
+/// well (`docs/images/exact-tradeoff.png`).
+fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
+    let table: [(f64, [f64; 3]); 3] = match method {
         ExactMethod::Eliminate => [
-            (4.0, [0.162, 0.128]),
-            (16.0, [0.067, 0.066]),
-            (64.0, [0.0, 0.061]),
+            (4.0, [0.151, 0.124, -0.019]),
+            (16.0, [0.067, 0.066, 0.016]),
+            (64.0, [0.0, 0.061, 0.023]),
         ],
         ExactMethod::Random => [
-            (4.0, [0.236, 0.193]),
-            (16.0, [0.023, 0.018]),
-            (64.0, [0.0, 0.0]),
+            (4.0, [0.236, 0.193, -0.036]),
+            (16.0, [0.023, 0.018, 0.0]),
+            (64.0, [0.0, 0.0, 0.0]),
         ],
     };
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
@@ -121,7 +127,9 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 2] {
             && n > *n0
         {
             let t = ((n - n0) / (n1 - n0)).min(1.0);
-            beta = [b0[0] + t * (b1[0] - b0[0]), b0[1] + t * (b1[1] - b0[1])];
+            for (b, (lo, hi)) in beta.iter_mut().zip(b0.iter().zip(b1)) {
+                *b = lo + t * (hi - lo);
+            }
         }
     }
     beta
@@ -161,7 +169,7 @@ pub(crate) struct Exact {
     n: usize,
     method: ExactMethod,
     /// β along x and y, of [`Self::edge_factor`].
-    bias: [f64; 2],
+    bias: [f64; 3],
     /// `2rₑ`: the reach of the elimination weight.
     reach: f64,
     /// The sweep's radius squared: what darts must keep from every point.
@@ -197,7 +205,7 @@ pub(crate) struct Exact {
 impl Exact {
     /// Settings for `n` points per pixel, thinned by `method` from a sweep
     /// of radius `radius`.
-    pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 2]>) -> Self {
+    pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
         let bias = bias.unwrap_or_else(|| calibrated_bias(method, n));
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
@@ -250,9 +258,11 @@ impl Exact {
         }
     }
 
-    /// How much more readily point `i` is dropped for where it lies in its
-    /// pixel: `1 - β·(h(u) + h(v))`, `h(t) = (2t - 1)² - 1/3` (mean 0 over
-    /// the pixel, 2/3 at its edges, -1/3 at its centre).
+    /// How readily point `i` is dropped for where it lies in its pixel,
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1)`, with
+    /// `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
+    /// -1/3 at its centre); so positive β keep points near the edges, and a
+    /// positive γ keeps them near the bottom.
     fn edge_factor(&self, i: usize) -> f64 {
         let Some(p) = self.points.get(i) else {
             return 1.0;
@@ -261,7 +271,8 @@ impl Exact {
             let f = t - t.floor();
             (2.0 * f - 1.0) * (2.0 * f - 1.0) - 1.0 / 3.0
         };
-        1.0 - self.bias[0] * h(p[0]) - self.bias[1] * h(p[1])
+        let v = p[1] - p[1].floor();
+        1.0 - self.bias[0] * h(p[0]) - self.bias[1] * h(p[1]) - self.bias[2] * (2.0 * v - 1.0)
     }
 
     fn weight_of(&self, d2: f64) -> f64 {
@@ -769,7 +780,7 @@ impl Exact {
             while let Some(&c) = self.count.get(x)
                 && c > self.n
             {
-                if self.bias == [0.0; 2] {
+                if self.bias == [0.0; 3] {
                     let mut k = below(rng, c);
                     for i in a..z {
                         if self.alive.get(i) == Some(&true) {

@@ -122,7 +122,7 @@ pub struct TiledBuilder {
     exact_oversample: f64,
     /// Exact mode: β along x and y, how much more readily points near a
     /// pixel's centre are dropped; `None` for the calibrated values.
-    exact_bias: Option<[f64; 2]>,
+    exact_bias: Option<[f64; 3]>,
 }
 
 impl TiledBuilder {
@@ -176,7 +176,7 @@ impl TiledBuilder {
     /// pixel vanishes. `[0.0, 0.0]` turns the correction off. Ignored
     /// outside exact mode.
     #[must_use]
-    pub fn exact_edge_bias(mut self, beta: [f64; 2]) -> Self {
+    pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
         self.exact_bias = Some(beta);
         self
     }
