@@ -174,8 +174,10 @@ pub(crate) struct Exact {
     reach: f64,
     /// The sweep's radius squared: what darts must keep from every point.
     radius_squared: f64,
-    /// Cells per pixel side of the band's local grid: cells are at least
-    /// `reach` wide, so neighbours lie within `cell_reach` cells.
+    /// Cells per pixel side of the band's local grid: cells are about half
+    /// the search distance wide (a 5 × 5 block of them is searched, 1.8
+    /// pixels² at `n = 4` where whole pixels would search 9), and
+    /// neighbours lie within `cell_reach` cells.
     cells: usize,
     cell_reach: usize,
     /// Pixel rows above searched for final points (`ceil(reach)`).
@@ -217,9 +219,9 @@ impl Exact {
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,
-            reason = "1 <= 1/search <= 2^16 for the radii the window accepts"
+            reason = "clamped to 1 ..= 2^16"
         )]
-        let cells = ((1.0 / search).floor().clamp(1.0, 65_536.0)) as usize;
+        let cells = ((2.0 / search).floor().clamp(1.0, 65_536.0)) as usize;
         #[expect(clippy::cast_precision_loss, reason = "cells <= 2^16")]
         let cell_side = 1.0 / cells as f64;
         #[expect(

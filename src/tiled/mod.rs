@@ -136,7 +136,7 @@ impl TiledBuilder {
     /// `n`. So the minimum distance is the sweep's radius,
     /// [`Tiled::radius`], except around top-ups: darts placed closer
     /// because no room could be made, which [`Pixels::top_ups`] counts (none
-    /// in our runs).
+    /// at the default oversampling in our runs; some at `1.0`).
     ///
     /// Exact mode always uses [`Scheme::Sweep`]: it thins whole rows
     /// jointly (see the `exact` module docs in the source).
@@ -456,8 +456,11 @@ impl<R: Rng> Pixels<R> {
         Some((x, y))
     }
 
-    /// Exact mode: how many points so far were top-up darts, placed in
-    /// pixels the oversampled sweep left with fewer than `n` points.
+    /// Exact mode: how many points so far were top-ups: darts placed in a
+    /// pixel the oversampled sweep left with fewer than `n` points where no
+    /// room could be made at the sweep's radius, so closer than
+    /// [`Tiled::radius`] to some point. Zero means the whole stream keeps
+    /// that radius.
     pub fn top_ups(&self) -> u64 {
         self.top_ups
     }
