@@ -191,8 +191,9 @@ pub(crate) struct Exact {
     start: Vec<usize>,
     /// Live points per band pixel.
     count: Vec<usize>,
-    /// Indices of `points` by local grid cell.
+    /// Indices of `points` by local grid cell, and each point's cell.
     cell_start: Vec<usize>,
+    cell_of: Vec<usize>,
     cell_items: Vec<u32>,
     /// Elimination: weights, and each point's neighbours with their weight
     /// terms.
@@ -251,6 +252,7 @@ impl Exact {
             start: Vec::new(),
             count: Vec::new(),
             cell_start: Vec::new(),
+            cell_of: Vec::new(),
             cell_items: Vec::new(),
             weight: Vec::new(),
             link_start: Vec::new(),
@@ -419,18 +421,22 @@ impl Exact {
     fn index_cells(&mut self, y: usize, width: usize, band_rows: usize) {
         let columns = width * self.cells;
         let cells = columns * band_rows * self.cells;
+        // Each point's cell, or `usize::MAX` for a dead one.
+        let mut cell_of = core::mem::take(&mut self.cell_of);
+        cell_of.clear();
+        cell_of.extend(self.points.iter().zip(&self.alive).map(|(p, &alive)| {
+            if alive {
+                let (cx, cy) = self.cell_of(p, y, width, band_rows);
+                cy * columns + cx
+            } else {
+                usize::MAX
+            }
+        }));
         self.cell_start.clear();
         self.cell_start.resize(cells + 1, 0);
-        for i in 0..self.points.len() {
-            if self.alive.get(i) != Some(&true) {
-                continue;
-            }
-            let Some(p) = self.points.get(i) else {
-                continue;
-            };
-            let (cx, cy) = self.cell_of(p, y, width, band_rows);
-            if let Some(c) = self.cell_start.get_mut(cy * columns + cx + 1) {
-                *c += 1;
+        for &c in &cell_of {
+            if let Some(count) = c.checked_add(1).and_then(|k| self.cell_start.get_mut(k)) {
+                *count += 1;
             }
         }
         let mut sum = 0;
@@ -442,15 +448,7 @@ impl Exact {
         self.cell_items.resize(sum, 0);
         // `cell_start[c]` walks up to `cell_start[c + 1]` as cell c fills;
         // shifted back afterwards.
-        for i in 0..self.points.len() {
-            if self.alive.get(i) != Some(&true) {
-                continue;
-            }
-            let Some(p) = self.points.get(i) else {
-                continue;
-            };
-            let (cx, cy) = self.cell_of(p, y, width, band_rows);
-            let c = cy * columns + cx;
+        for (i, &c) in cell_of.iter().enumerate() {
             if let Some(at) = self.cell_start.get_mut(c) {
                 #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
                 if let Some(slot) = self.cell_items.get_mut(*at) {
@@ -459,6 +457,7 @@ impl Exact {
                 *at += 1;
             }
         }
+        self.cell_of = cell_of;
         for c in (1..=cells).rev() {
             let prev = self.cell_start.get(c - 1).copied().unwrap_or(0);
             if let Some(s) = self.cell_start.get_mut(c) {
