@@ -10,19 +10,22 @@
 //! 2. **Short pixels.** A pixel of row `y` left with fewer than `n` points
 //!    gets darts. A dart is valid only if it lies at least `r` from every
 //!    point that stays: of 32 uniform darts in the pixel, the one with the
-//!    fewest *blockers* (band points closer than `r`) is taken, its blockers
-//!    removed, where every blocker lies in another pixel that keeps at least
-//!    `n` points (first of row `y` and `y + 1` alike; then, if none fits,
-//!    letting a pixel still to be settled fall short, one right of it in
-//!    row `y` or one of row `y + 1`, which gets its own darts in turn; a
-//!    final point of a row above, or another dart, is never removed). So
-//!    points move across a pixel border, one out near it on one side and
-//!    one in near it on the other: the density along the borders is kept.
-//!    The dart goes into the sweep's grid, so that points the sweep still
-//!    makes below keep their distance from it too. Only if even that fails
-//!    (not seen in our runs: `examples/stream.rs` reports it) the best of
-//!    the darts by distance is taken: a *top-up*, which may come closer than
-//!    `r`; [`Pixels::top_ups`] counts them.
+//!    fewest *blockers* (band points closer than `r`, at most four) is
+//!    taken and its blockers removed. Every blocker must lie in another
+//!    pixel, and a final point of a row above or another dart is never
+//!    removed. Which pixels may lose a blocker widens in stages, each
+//!    tried only if the previous found no dart: a pixel that keeps at
+//!    least `n` points; or one not yet mended, right of it in row `y` or in
+//!    row `y + 1`, which gets its own darts in turn (then with 256 darts);
+//!    then any pixel, a pixel of row `y` left short being mended on the
+//!    next pass over the row (up to four passes). So points move across a
+//!    pixel border, one out near it on one side and one in near it on the
+//!    other: the density along the borders is kept. The dart goes into the
+//!    sweep's grid, so that points the sweep still makes below keep their
+//!    distance from it too. Only if all that fails (not seen at the
+//!    default oversampling: `examples/stream.rs` reports it) the best of
+//!    the darts by distance is taken: a *top-up*, which may come closer
+//!    than `r`; [`Pixels::top_ups`] counts them.
 //! 3. **Excess.** Pixels of row `y` with more than `n` points lose the
 //!    excess, by the [`ExactMethod`]:
 //!    - [`ExactMethod::Eliminate`]: weighted sample elimination (Yuksel
@@ -154,6 +157,22 @@ impl Ord for Entry {
     fn cmp(&self, other: &Self) -> Ordering {
         self.0.total_cmp(&other.0).then(other.1.cmp(&self.1))
     }
+}
+
+/// Passes over a row that mend short pixels (see [`Take::Any`]).
+const MEND_PASSES: usize = 4;
+
+/// Which pixels a dart may take points from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Take {
+    /// Pixels that keep at least `n` points afterwards.
+    Excess,
+    /// Those, and pixels not yet mended (right of the dart's in its row,
+    /// or in the row below), which may fall short: they get darts in turn.
+    Unsettled,
+    /// Any other pixel of the band; a pixel of the row left short is
+    /// mended on the next pass.
+    Any,
 }
 
 /// What a dart would cost: the band points closer than `r` to it.
@@ -306,9 +325,20 @@ impl Exact {
         self.kill_conflicts(window, y, width);
         self.index_cells(y, width, band_rows);
         let mut top_ups = 0;
-        for x in 0..width {
-            while self.count.get(x).is_some_and(|&c| c < self.n) {
-                top_ups += self.add_dart(window, (x, y), width, band_rows, rng);
+        // A dart may, as a last resort, take a point from a pixel of the
+        // row already mended, which then gets mended again on the next
+        // pass; the last pass may not, so it ends the row.
+        for pass in 0..MEND_PASSES {
+            let mut short = false;
+            for x in 0..width {
+                while self.count.get(x).is_some_and(|&c| c < self.n) {
+                    short = true;
+                    let settled_ok = pass + 1 < MEND_PASSES;
+                    top_ups += self.add_dart(window, (x, y), (width, band_rows), settled_ok, rng);
+                }
+            }
+            if !short {
+                break;
             }
         }
         match self.method {
@@ -503,8 +533,8 @@ impl Exact {
         &mut self,
         window: &mut Window,
         (x, y): (usize, usize),
-        width: usize,
-        band_rows: usize,
+        (width, band_rows): (usize, usize),
+        settled_ok: bool,
         rng: &mut R,
     ) -> usize {
         #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
@@ -512,8 +542,18 @@ impl Exact {
         let mut darts = [[0.0; 2]; DARTS_MORE];
         let mut thrown = 0;
         // Strict with a few darts, then lenient with them, then lenient
-        // with many: most short pixels take the first.
-        for (lenient, count) in [(false, DARTS), (true, DARTS), (true, DARTS_MORE)] {
+        // with many, then (if allowed) taking from any pixel: most short
+        // pixels take the first.
+        let stages = [
+            (Take::Excess, DARTS),
+            (Take::Unsettled, DARTS),
+            (Take::Unsettled, DARTS_MORE),
+            (Take::Any, DARTS_MORE),
+        ];
+        for (take, count) in stages {
+            if take == Take::Any && !settled_ok {
+                continue;
+            }
             for d in darts.get_mut(thrown..count).unwrap_or(&mut []) {
                 *d = [fx + unit(rng), fy + unit(rng)];
                 // Rounding onto the far edge: the pixel's corner instead.
@@ -524,7 +564,7 @@ impl Exact {
             thrown = thrown.max(count);
             let mut best: Option<([f64; 2], Blockers)> = None;
             for d in darts.get(..count).unwrap_or(&[]) {
-                if let Some(b) = self.blockers(window, d, (x, y), width, band_rows, lenient)
+                if let Some(b) = self.blockers(window, d, (x, y), width, band_rows, take)
                     && best.is_none_or(|(_, c)| b.count < c.count)
                 {
                     best = Some((*d, b));
@@ -597,11 +637,9 @@ impl Exact {
     }
 
     /// The band points closer than `r` to dart `d` in pixel `(x, y)`, if
-    /// they may all be removed: each in another pixel that keeps `n` points
-    /// afterwards (with `lenient`, a pixel still to be settled, of row
-    /// `y + 1` or right of `x`, may fall short: it gets its own darts),
-    /// at most [`MAX_BLOCKERS`]; and no final point above or dart is that
-    /// close.
+    /// they may all be removed: each in another pixel, which `take` allows
+    /// to lose it, at most [`MAX_BLOCKERS`]; and no final point above or
+    /// dart is that close.
     fn blockers(
         &self,
         window: &Window,
@@ -609,7 +647,7 @@ impl Exact {
         (x, y): (usize, usize),
         width: usize,
         band_rows: usize,
-        lenient: bool,
+        take: Take,
     ) -> Option<Blockers> {
         let r2 = self.radius_squared;
         for &i in &self.darts {
@@ -657,7 +695,11 @@ impl Exact {
             let left = self.count.get(b).copied().unwrap_or(0);
             let may = b != x
                 && found.count < MAX_BLOCKERS
-                && (left >= self.n + taken || (lenient && b > x));
+                && match take {
+                    Take::Excess => left >= self.n + taken,
+                    Take::Unsettled => left >= self.n + taken || b > x,
+                    Take::Any => true,
+                };
             if let (true, Some(slot)) = (may, found.items.get_mut(found.count)) {
                 *slot = i;
                 found.count += 1;
