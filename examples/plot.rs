@@ -22,8 +22,8 @@
 //! power, anisotropy), `raster.rs` (in-pixel density, per-pixel counts,
 //! edge bands — each takes a plain list of points in raster coordinates, so
 //! a streamed set is measured like a batch one), `quality.rs` (minimum
-//! distance, close pairs, uncovered fraction), `draw.rs` and `canvas.rs`
-//! (pictures, PNG), `font.rs` (the 5×7 font).
+//! distance, close pairs, uncovered fraction), `draw.rs`, `canvas.rs` and
+//! `common/line_chart.rs` (pictures, PNG), `font.rs` (the 5×7 font).
 
 #[path = "plot/args.rs"]
 mod args;
@@ -35,6 +35,8 @@ mod common;
 mod draw;
 #[path = "plot/font.rs"]
 mod font;
+#[path = "common/line_chart.rs"]
+mod line_chart;
 // The integration tests' naive oracle: the one independent distance check.
 #[path = "../tests/common/mod.rs"]
 mod oracle;

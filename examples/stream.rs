@@ -10,17 +10,38 @@
 //! cargo run --release --example stream -- --pixels 16384x16384 --per-pixel 4 --scheme sweep --no-batch --progress 512
 //! ```
 //!
+//! Exact mode (`--exact N`, with `--method eliminate|random`,
+//! `--oversample S` and `--bias BX,BY,GY` to override the calibrated edge
+//! correction) prints the same figures for its kept points, plus the
+//! top-ups, the first harmonic of the in-pixel density (what the edge
+//! correction is calibrated on) and ρ of the measured minimum distance.
+//! `--chart FILE` charts the trade-off against the oversampling instead:
+//!
+//! ```text
+//! cargo run --release --example stream -- --pixels 160x160 --exact 4 --scheme sweep --no-batch
+//! cargo run --release --example stream -- --pixels 160x160 --exact 4 --chart docs/images/exact-tradeoff.png
+//! ```
+//!
 //! `--progress ROWS` prints, every ROWS rows, the points so far, the rate and
 //! the current RSS, so a long run shows its memory staying flat.
 //!
 //! Peak RSS (`VmHWM`, Linux) covers the whole run; with `--scheme` and
 //! `--no-batch` a run measures one configuration only.
 
+#[allow(dead_code, reason = "shared with `plot`, which uses all of it")]
+#[path = "plot/canvas.rs"]
+mod canvas;
 #[path = "common/mod.rs"]
 mod common;
+#[path = "plot/font.rs"]
+mod font;
+#[path = "common/line_chart.rs"]
+mod line_chart;
+#[path = "stream/tradeoff.rs"]
+mod tradeoff;
 
 use crate::common::{peak_rss_mib, status_mib};
-use bridson::{Domain, PoissonDisk, Scheme, Tiled, relative_radius};
+use bridson::{Domain, ExactMethod, PoissonDisk, Scheme, Tiled, relative_radius};
 use clap::{Parser, ValueEnum};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -51,9 +72,46 @@ struct Args {
     /// Exactly N points in every pixel
     #[arg(long, value_name = "N")]
     exact: Option<u32>,
+    /// Exact mode: how excess points are dropped
+    #[arg(long, value_name = "METHOD", value_enum, default_value_t = MethodArg::Eliminate)]
+    method: MethodArg,
+    /// Exact mode: the sweep's points per pixel over N
+    #[arg(long, value_name = "S", default_value_t = 1.25)]
+    oversample: f64,
+    /// Exact mode: edge correction BX,BY [default: the calibrated one]
+    #[arg(long, value_name = "BX,BY,GY", value_parser = triple)]
+    bias: Option<[f64; 3]>,
+    /// With --exact: measure both methods, with and without their edge
+    /// correction, at oversamplings 1 to 3, and chart the trade-off (PNG)
+    #[arg(long, value_name = "FILE", requires = "exact")]
+    chart: Option<std::path::PathBuf>,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
+}
+
+/// Three numbers `a,b,c`, for `--bias`.
+fn triple(text: &str) -> Result<[f64; 3], String> {
+    match common::list::<f64>(text)?.as_slice() {
+        &[a, b, c] => Ok([a, b, c]),
+        _ => Err(format!("expected three numbers a,b,c, got '{text}'")),
+    }
+}
+
+/// `--method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    Eliminate,
+    Random,
+}
+
+impl From<MethodArg> for ExactMethod {
+    fn from(m: MethodArg) -> Self {
+        match m {
+            MethodArg::Eliminate => Self::Eliminate,
+            MethodArg::Random => Self::Random,
+        }
+    }
 }
 
 /// `--scheme`.
@@ -182,19 +240,9 @@ impl Stats {
             "  per pixel: mean {mean:.3}, sd {:.3}, min {min}, max {max}",
             var.sqrt()
         );
-        #[expect(clippy::cast_precision_loss, reason = "statistics")]
-        let interior = self.interior as f64 / 0.64;
-        let ratio = |k: usize| {
-            #[expect(clippy::cast_precision_loss, reason = "statistics")]
-            let band = self.bands[k] as f64 / 0.1;
-            band / interior
-        };
+        let [left, right, top, bottom] = self.edge_ratios();
         println!(
-            "  edge band / interior density: left {:.3}, right {:.3}, top {:.3}, bottom {:.3}",
-            ratio(0),
-            ratio(1),
-            ratio(2),
-            ratio(3)
+            "  edge band / interior density: left {left:.3}, right {right:.3}, top {top:.3}, bottom {bottom:.3}"
         );
         for (axis, name) in ["x", "y"].iter().enumerate() {
             let bins: Vec<String> = self.profile[axis]
@@ -210,27 +258,71 @@ impl Stats {
                 bins.join(" ")
             );
         }
-        // Periodogram value |Σ e^{-2πi f·x}|² / n at f = (W, 0) and (0, H),
-        // the pixel frequency: ≈ 1 for no structure, ≫ 1 for a pixel pattern.
-        let power = |(c, s): (f64, f64)| (c * c + s * s) / n;
         println!(
-            "  power at the pixel frequency (1 = no structure): x {:.2}, y {:.2}",
-            power(self.pixel_frequency[0]),
-            power(self.pixel_frequency[1])
+            "  first harmonic of the in-pixel density (cos, sin): x {:+.4} {:+.4}, y {:+.4} {:+.4}",
+            2.0 * self.pixel_frequency[0].0 / n,
+            -2.0 * self.pixel_frequency[0].1 / n,
+            2.0 * self.pixel_frequency[1].0 / n,
+            -2.0 * self.pixel_frequency[1].1 / n
         );
+        let [px, py] = self.power();
+        println!("  power at the pixel frequency (1 = no structure): x {px:.2}, y {py:.2}");
+    }
+
+    /// Density in the left, right, top and bottom 0.1-pixel bands of the
+    /// pixels relative to the interior `[0.1, 0.9)²`.
+    fn edge_ratios(&self) -> [f64; 4] {
+        #[expect(clippy::cast_precision_loss, reason = "statistics")]
+        let interior = self.interior as f64 / 0.64;
+        #[expect(clippy::cast_precision_loss, reason = "statistics")]
+        self.bands.map(|band| band as f64 / 0.1 / interior)
+    }
+
+    /// Periodogram value |Σ e^{-2πi f·x}|² / n at f = (W, 0) and (0, H),
+    /// the pixel frequency: ≈ 1 for no structure, ≫ 1 for a pixel pattern.
+    fn power(&self) -> [f64; 2] {
+        #[expect(clippy::cast_precision_loss, reason = "statistics")]
+        let n = self.points as f64;
+        self.pixel_frequency.map(|(c, s)| (c * c + s * s) / n)
+    }
+
+    /// ρ of the smallest distance measured, for the points seen in `area`.
+    fn rho_of_minimum(&self, area: f64) -> f64 {
+        usize::try_from(self.points)
+            .ok()
+            .and_then(|n| relative_radius::<2>(self.min_d2.sqrt(), n, area))
+            .unwrap_or(f64::NAN)
     }
 }
 
 fn main() -> ExitCode {
     let args = Args::parse();
     let (width, height) = args.size;
+    if let (Some(path), Some(n)) = (&args.chart, args.exact) {
+        return match tradeoff::chart(args.size, n, args.seed, path) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("stream: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let pixels = u64::from(width) * u64::from(height);
     let area = f64::from(width) * f64::from(height);
     let mut stream_rate = None;
     for scheme in args.scheme.list() {
         let builder = Tiled::builder(width, height).scheme(scheme);
         let builder = match (args.exact, args.radius) {
-            (Some(n), _) => builder.exact(n),
+            (Some(n), _) => {
+                let b = builder
+                    .exact(n)
+                    .exact_method(args.method.into())
+                    .exact_oversample(args.oversample);
+                match args.bias {
+                    Some(beta) => b.exact_edge_bias(beta),
+                    None => b,
+                }
+            }
             (None, Some(r)) => builder.radius(r),
             (None, None) => builder.per_pixel(args.per_pixel),
         };
@@ -244,6 +336,7 @@ fn main() -> ExitCode {
         let mut stats = Stats::new(width);
         let mut buf = Vec::new();
         let start = Instant::now();
+        let cpu_start = common::thread_cpu_seconds();
         let mut stream = tiled.pixels_seeded(args.seed);
         while let Some((x, y)) = stream.next_into(&mut buf) {
             stats.add(x, y, &buf);
@@ -265,6 +358,12 @@ fn main() -> ExitCode {
         let seconds = start.elapsed().as_secs_f64();
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let rate = stats.points as f64 / seconds;
+        // On a shared machine the thread's CPU time is the steadier cost.
+        if let (Some(a), Some(b)) = (cpu_start, common::thread_cpu_seconds()) {
+            #[expect(clippy::cast_precision_loss, reason = "statistics")]
+            let cpu_rate = stats.points as f64 / (b - a) / 1e6;
+            println!("  CPU time {:.3} s ({cpu_rate:.3} M points/s)", b - a);
+        }
         // ρ of the radius r (natural mode: the guaranteed minimum), and of
         // the set's measured minimum distance (what exact mode offers).
         let rho_of = |d: f64| {

@@ -293,7 +293,9 @@ pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Everywhere, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2,
     PoissonDisk3, Region,
 };
-pub use crate::tiled::{DEFAULT_MAX_WINDOW_BYTES, Pixel, Pixels, Scheme, Tiled, TiledBuilder};
+pub use crate::tiled::{
+    DEFAULT_MAX_WINDOW_BYTES, ExactMethod, Pixel, Pixels, Scheme, Tiled, TiledBuilder,
+};
 /// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and
 /// [`Tiled::pixels`] take, re-exported so that `bridson::rand::Rng` always
 /// names the right trait whatever rand your project uses (see "Which rand"

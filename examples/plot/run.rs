@@ -4,7 +4,8 @@
 
 use crate::args::{Config, Plot, Stream, View};
 use crate::common::{Failure, report};
-use crate::draw::{self, CellGrid, LineChart, PointView, Reference, Series};
+use crate::draw::{self, CellGrid, PointView};
+use crate::line_chart::{LineChart, Reference, Series};
 use crate::raster::{self, CountHistogram, EdgeRatios, InPixelDensity, Raster};
 use crate::spectrum::{self, Periodogram};
 use crate::{canvas, quality};

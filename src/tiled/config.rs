@@ -5,11 +5,15 @@
 //! the `points` command line. `exact` may come with either of the others
 //! (it overrides them, as [`TiledBuilder::exact`] does); `radius` with
 //! `per_pixel` is refused, since the builder keeps only the last one given.
+//! Exact mode's knobs are `exact_method` (`"eliminate"`, `"random"`),
+//! `exact_oversample` and `exact_edge_bias` (`[βx, βy, γ]` or null for the
+//! calibrated table), checked by `build()` like the rest.
 //! A [`Tiled`] is (de)serialised as its builder, and deserialising it runs
 //! [`TiledBuilder::build`], so a bad file is an [`Error`], never a bad
 //! sampler.
 
-use super::{DEFAULT_MAX_WINDOW_BYTES, Scheme, Spacing, Tiled, TiledBuilder};
+use super::exact::DEFAULT_OVERSAMPLE;
+use super::{DEFAULT_MAX_WINDOW_BYTES, ExactMethod, Scheme, Spacing, Tiled, TiledBuilder};
 use crate::candidates::Candidates;
 use crate::error::Error;
 
@@ -27,6 +31,12 @@ pub(super) struct TiledRepr {
     per_pixel: Option<f64>,
     #[serde(default)]
     exact: Option<u32>,
+    #[serde(default)]
+    exact_method: ExactMethod,
+    #[serde(default = "default_oversample")]
+    exact_oversample: f64,
+    #[serde(default)]
+    exact_edge_bias: Option<[f64; 3]>,
     #[serde(default = "default_attempts")]
     attempts: u32,
     #[serde(default)]
@@ -39,6 +49,10 @@ pub(super) struct TiledRepr {
 
 fn default_attempts() -> u32 {
     crate::DEFAULT_ATTEMPTS
+}
+
+fn default_oversample() -> f64 {
+    DEFAULT_OVERSAMPLE
 }
 
 fn default_window() -> u64 {
@@ -67,6 +81,9 @@ impl TryFrom<TiledRepr> for TiledBuilder {
             scheme: raw.scheme,
             max_window_bytes: raw.max_window_bytes,
             exact: raw.exact,
+            exact_method: raw.exact_method,
+            exact_oversample: raw.exact_oversample,
+            exact_bias: raw.exact_edge_bias,
         })
     }
 }
@@ -84,6 +101,9 @@ impl From<TiledBuilder> for TiledRepr {
             radius,
             per_pixel,
             exact: b.exact,
+            exact_method: b.exact_method,
+            exact_oversample: b.exact_oversample,
+            exact_edge_bias: b.exact_bias,
             attempts: b.attempts,
             candidates: b.candidates,
             scheme: b.scheme,

@@ -1,65 +1,151 @@
-//! Exact mode: exactly `n` points in every pixel, by weighted sample
-//! elimination (Yuksel 2015, "Sample Elimination for Generating Poisson Disk
-//! Sample Sets") applied to an oversampled sweep, a row at a time.
+//! Exact mode: exactly `n` points in every pixel, thinned from a sweep run
+//! at a radius that gives about `s·n` points per pixel (`s`, the
+//! oversampling, [`DEFAULT_OVERSAMPLE`] unless set), one row at a time.
 //!
-//! The sweep runs at the radius that gives about [`OVERSAMPLE`]`·n` points
-//! per pixel. When row `y` is complete, the points of rows `y` and `y + 1`
-//! are thinned *together*: the point with the largest weight
-//! `Σ (1 - d/2rₑ)⁸` over neighbours closer than `2rₑ` is removed, again and
-//! again, except from pixels already down to `n`, where
-//! `rₑ = sqrt(1 / (2√3·n))` is the spacing of `n` points per pixel on a
-//! hexagonal lattice. The neighbours are the band's remaining points and
-//! the final points of the rows above. Row `y` keeps its result; row
-//! `y + 1`'s is thrown away and done again with row `y` fixed. So every row
-//! is thinned with thinned rows on both sides and jointly along its length:
-//! no pixel border is favoured; thinning pixel by pixel favours some
-//! (`docs/performance-journal.md` has the bands it left).
+//! When row `y` is complete, the points of rows `y` and `y + 1` (the band)
+//! are gathered, and row `y` is settled in three steps:
 //!
-//! Measured with `examples/stream.rs --pixels 160x160 --exact N`, the
-//! density in 0.1-pixel bands along the pixel edges relative to the pixel
-//! interior is 0.95–1.01 for `n = 8`, 0.91–0.96 for `n = 4` and 0.72–0.74
-//! for `n = 1`. Part of this is inherent: the best-spread set with exactly
-//! one point per pixel draws its points toward the pixel centres, like a
-//! jittered lattice; exact counts and edge-blind density pull against each
-//! other as `n` gets small.
+//! 1. **Dead points.** A band point closer than the sweep's radius `r` to a
+//!    final point of the rows above (a dart placed there, step 2) is out.
+//! 2. **Short pixels.** A pixel of row `y` left with fewer than `n` points
+//!    gets darts. A dart is valid only if it lies at least `r` from every
+//!    point that stays: of 32 uniform darts in the pixel, the one with the
+//!    fewest *blockers* (band points closer than `r`, at most four) is
+//!    taken and its blockers removed. Every blocker must lie in another
+//!    pixel, and a final point of a row above or another dart is never
+//!    removed. Which pixels may lose a blocker widens in stages, each
+//!    tried only if the previous found no dart: a pixel that keeps at
+//!    least `n` points; or one not yet mended, right of it in row `y` or in
+//!    row `y + 1`, which gets its own darts in turn (then with 256 darts);
+//!    then any pixel, a pixel of row `y` left short being mended on the
+//!    next pass over the row (up to four passes). So points move across a
+//!    pixel border, one out near it on one side and one in near it on the
+//!    other: the density along the borders is kept. The dart goes into the
+//!    sweep's grid, so that points the sweep still makes below keep their
+//!    distance from it too. Only if all that fails (not seen at the
+//!    default oversampling: `examples/stream.rs` reports it) the best of
+//!    the darts by distance is taken: a *top-up*, which may come closer
+//!    than `r`; [`Pixels::top_ups`] counts them.
+//! 3. **Excess.** Pixels of row `y` with more than `n` points lose the
+//!    excess, by the [`ExactMethod`]:
+//!    - [`ExactMethod::Eliminate`]: weighted sample elimination (Yuksel
+//!      2015, "Sample Elimination for Generating Poisson Disk Sample
+//!      Sets"), rows `y` and `y + 1` together: the point with the largest
+//!      weight `Σ (1 - d/2rₑ)⁸` over neighbours closer than `2rₑ` is
+//!      removed, again and again, except from pixels already down to `n`,
+//!      where `rₑ = sqrt(1 / (2√3·n))` is the spacing of `n` points per
+//!      pixel on a hexagonal lattice; the neighbours are the band's points
+//!      and the final points above. Row `y + 1`'s result is thrown away and
+//!      made again with row `y` final, so every row is thinned with settled
+//!      rows on both sides.
+//!    - [`ExactMethod::Random`]: the excess points of each pixel are picked
+//!      uniformly at random, blind to where they lie.
 //!
-//! Elimination only removes points, so the set keeps the minimum distance of
-//! the oversampled sweep. A pixel left with fewer than `n` points (rare at
-//! this oversampling) is topped up with best-candidate darts: of 32 uniform
-//! darts in the pixel, the one farthest from every point near it. Those may
-//! come closer than the sweep's radius; [`Pixels::top_ups`] counts them.
+//! Every kept point is a sweep point or a valid dart, so the set's minimum
+//! distance is at least the sweep's radius, [`Tiled::radius`], except
+//! around top-ups. The scratch arrays live in [`Exact`] and are reused from
+//! row to row: after the first rows, thinning allocates nothing.
 //!
 //! [`Pixels::top_ups`]: super::Pixels::top_ups
+//! [`Tiled::radius`]: super::Tiled::radius
 
 use super::window::Window;
-use crate::random::unit;
+use crate::random::{below, unit};
 use crate::vector::distance_squared;
 use core::cmp::Ordering;
 use rand::Rng;
 use std::collections::BinaryHeap;
 
-/// Points per pixel the sweep makes, relative to the `n` kept.
-pub(crate) const OVERSAMPLE: f64 = 2.0;
+/// Points per pixel the sweep makes, relative to the `n` kept, unless
+/// [`TiledBuilder::exact_oversample`](super::TiledBuilder::exact_oversample)
+/// says otherwise. The kept set's ρ is about the sweep's (0.73) over `√s`,
+/// 0.65 here; a larger `s` gives elimination more to choose from at the
+/// cost of the minimum distance and of speed (`docs/performance-journal.md`
+/// has the trade-off).
+pub(crate) const DEFAULT_OVERSAMPLE: f64 = 1.25;
 
 /// Exponent of the elimination weight (Yuksel's α).
 const ALPHA: i32 = 8;
 
-/// Darts per best-candidate top-up.
+/// Darts thrown per point a short pixel needs, first and at most.
 const DARTS: usize = 32;
+const DARTS_MORE: usize = 256;
 
-/// Elimination settings for `n` points per pixel.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Thinning {
-    n: usize,
-    /// `2rₑ`: the reach of the weight.
-    reach: f64,
-    /// Pixels searched on each side for neighbours.
-    pixels: usize,
+/// A dart with more blockers than this is not taken.
+const MAX_BLOCKERS: usize = 4;
+
+/// How exact mode chooses, in a pixel with more than `n` points, which
+/// points to drop. Set with
+/// [`TiledBuilder::exact_method`](super::TiledBuilder::exact_method); both
+/// methods give exactly `n` points per pixel with the same minimum distance
+/// and mend short pixels the same way (see [`Tiled`](super::Tiled)).
+///
+/// They differ in what the set looks like. Elimination spreads the kept
+/// points best, but the per-pixel caps leave a faint pixel pattern; random
+/// dropping leaves none but adds a little white noise (a thinned Poisson
+/// disk set). README's streaming table has both, measured.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "lowercase")
+)]
+#[non_exhaustive]
+pub enum ExactMethod {
+    /// Weighted sample elimination (Yuksel 2015) of two rows together: the
+    /// most crowded point goes first.
+    #[default]
+    Eliminate,
+    /// Drops each pixel's excess points uniformly at random.
+    Random,
+}
+
+/// The edge correction `[βx, βy, γ]` (see [`Exact::edge_factor`]) that
+/// zeroes the first harmonic of the kept density across a pixel at the
+/// default oversampling, measured with `examples/stream.rs --exact N
+/// --method M` and `--bias` at two settings each, on about 10⁶ points
+/// (512², 256², 128² pixels for `n` = 4, 16, 64; the harmonic is linear in
+/// each): β from `0,0,0` and `0.2,0.2,0`, then γ from `βx,βy,0` and
+/// `βx,βy,0.1` (for elimination at `n = 4`, refined from two seeds at two
+/// more settings, the response being less linear). Linear in `n` between those, the `n = 4` values below (at
+/// `n = 1` no β helps: a quarter of the pixels are short there), the
+/// `n = 64` values above. `y` differs from `x` because rows are settled in
+/// order and columns together: darts take room from the row below (γ < 0),
+/// and elimination sees the rows above settled and the row below
+/// oversampled. Other oversamplings keep these values, which then fit less
+/// well (`docs/images/exact-tradeoff.png`).
+fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
+    let table: [(f64, [f64; 3]); 3] = match method {
+        ExactMethod::Eliminate => [
+            (4.0, [0.151, 0.124, -0.019]),
+            (16.0, [0.067, 0.066, 0.016]),
+            (64.0, [0.0, 0.061, 0.023]),
+        ],
+        ExactMethod::Random => [
+            (4.0, [0.236, 0.193, -0.036]),
+            (16.0, [0.023, 0.018, 0.0]),
+            (64.0, [0.0, 0.0, 0.0]),
+        ],
+    };
+    #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
+    let n = n as f64;
+    let mut beta = table[0].1;
+    for pair in table.windows(2) {
+        if let [(n0, b0), (n1, b1)] = pair
+            && n > *n0
+        {
+            let t = ((n - n0) / (n1 - n0)).min(1.0);
+            for (b, (lo, hi)) in beta.iter_mut().zip(b0.iter().zip(b1)) {
+                *b = lo + t * (hi - lo);
+            }
+        }
+    }
+    beta
 }
 
 /// A heap entry: a point's weight when pushed (stale if it changed since).
 #[derive(Clone, Copy, Debug)]
-struct Entry(f64, usize);
+struct Entry(f64, u32);
 
 impl PartialEq for Entry {
     fn eq(&self, other: &Self) -> bool {
@@ -78,21 +164,146 @@ impl Ord for Entry {
     }
 }
 
-impl Thinning {
-    pub(crate) fn new(n: usize) -> Self {
+/// Passes over a row that mend short pixels (see [`Take::Any`]).
+const MEND_PASSES: usize = 4;
+
+/// Which pixels a dart may take points from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Take {
+    /// Pixels that keep at least `n` points afterwards.
+    Excess,
+    /// Those, and pixels not yet mended (right of the dart's in its row,
+    /// or in the row below), which may fall short: they get darts in turn.
+    Unsettled,
+    /// Any other pixel of the band; a pixel of the row left short is
+    /// mended on the next pass.
+    Any,
+}
+
+/// What a dart would cost: the band points closer than `r` to it.
+#[derive(Clone, Copy, Debug)]
+struct Blockers {
+    count: usize,
+    items: [u32; MAX_BLOCKERS],
+}
+
+/// Exact mode's settings and its scratch arrays, reused from row to row.
+#[derive(Debug)]
+pub(crate) struct Exact {
+    n: usize,
+    method: ExactMethod,
+    /// β along x and y, of [`Self::edge_factor`].
+    bias: [f64; 3],
+    /// `2rₑ`: the reach of the elimination weight.
+    reach: f64,
+    /// The sweep's radius squared: what darts must keep from every point.
+    radius_squared: f64,
+    /// Cells per pixel side of the band's local grid: cells are about half
+    /// the search distance wide (a 5 × 5 block of them is searched, 1.8
+    /// pixels² at `n = 4` where whole pixels would search 9), and
+    /// neighbours lie within `cell_reach` cells.
+    cells: usize,
+    cell_reach: usize,
+    /// Pixel rows above searched for final points (`ceil(reach)`).
+    rows_up: usize,
+    /// Band points: gathered pixel by pixel in generation order, darts
+    /// appended; their band pixel (`row · width + x`); whether they stay.
+    points: Vec<[f64; 2]>,
+    pixel: Vec<u32>,
+    alive: Vec<bool>,
+    /// Where each band pixel's gathered points start in `points`.
+    start: Vec<usize>,
+    /// Live points per band pixel.
+    count: Vec<usize>,
+    /// Indices of `points` by local grid cell, and each point's cell.
+    cell_start: Vec<usize>,
+    cell_of: Vec<usize>,
+    cell_items: Vec<u32>,
+    /// Elimination: weights, and each point's neighbours with their weight
+    /// terms.
+    weight: Vec<f64>,
+    link_start: Vec<usize>,
+    links: Vec<(u32, f64)>,
+    heap: BinaryHeap<Entry>,
+    /// Darts placed in this band (indices into `points`).
+    darts: Vec<u32>,
+}
+
+impl Exact {
+    /// Settings for `n` points per pixel, thinned by `method` from a sweep
+    /// of radius `radius`.
+    pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
+        let bias = bias.unwrap_or_else(|| calibrated_bias(method, n));
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
         let reach = 2.0 * r_e;
+        // Both the weight's reach and the darts' radius must fit in the
+        // searched cells; the radius is below the reach for any
+        // oversampling above 0.54, but take the larger to be sure.
+        let search = reach.max(radius);
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,
-            reason = "reach <= 2 / sqrt(2√3) < 2 pixels"
+            reason = "clamped to 1 ..= 2^16"
         )]
-        let pixels = reach.ceil() as usize;
-        Self { n, reach, pixels }
+        let cells = ((2.0 / search).floor().clamp(1.0, 65_536.0)) as usize;
+        #[expect(clippy::cast_precision_loss, reason = "cells <= 2^16")]
+        let cell_side = 1.0 / cells as f64;
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "search / side: a few cells (search < 2 pixels here)"
+        )]
+        let cell_reach = ((search / cell_side).ceil().clamp(1.0, 1e6)) as usize;
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "a few pixels"
+        )]
+        let rows_up = (search.ceil().clamp(1.0, 1e6)) as usize;
+        Self {
+            n,
+            method,
+            bias,
+            reach,
+            radius_squared: radius * radius,
+            cells,
+            cell_reach,
+            rows_up,
+            points: Vec::new(),
+            pixel: Vec::new(),
+            alive: Vec::new(),
+            start: Vec::new(),
+            count: Vec::new(),
+            cell_start: Vec::new(),
+            cell_of: Vec::new(),
+            cell_items: Vec::new(),
+            weight: Vec::new(),
+            link_start: Vec::new(),
+            links: Vec::new(),
+            heap: BinaryHeap::new(),
+            darts: Vec::new(),
+        }
     }
 
-    fn weight(&self, d2: f64) -> f64 {
+    /// How readily point `i` is dropped for where it lies in its pixel,
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1)`, with
+    /// `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
+    /// -1/3 at its centre); so positive β keep points near the edges, and a
+    /// positive γ keeps them near the bottom.
+    fn edge_factor(&self, i: usize) -> f64 {
+        let Some(p) = self.points.get(i) else {
+            return 1.0;
+        };
+        let h = |t: f64| {
+            let f = t - t.floor();
+            (2.0 * f - 1.0) * (2.0 * f - 1.0) - 1.0 / 3.0
+        };
+        let v = p[1] - p[1].floor();
+        1.0 - self.bias[0] * h(p[0]) - self.bias[1] * h(p[1]) - self.bias[2] * (2.0 * v - 1.0)
+    }
+
+    fn weight_of(&self, d2: f64) -> f64 {
         if d2 < self.reach * self.reach {
             (1.0 - d2.sqrt() / self.reach).powi(ALPHA)
         } else {
@@ -100,173 +311,583 @@ impl Thinning {
         }
     }
 
-    /// Thins row `y` to exactly `n` points per pixel, jointly with row
-    /// `y + 1` (whose thinning is discarded), against the final points of
-    /// the rows above; stores the result as the row's points and final
-    /// points. Returns the number of top-up darts placed.
+    /// Settles row `y`: exactly `n` points in each of its pixels, stored as
+    /// the row's points and final points. Returns the number of top-ups
+    /// (darts closer than the sweep's radius) it needed.
     pub(crate) fn thin_row<R: Rng + ?Sized>(
-        &self,
+        &mut self,
         window: &mut Window,
         y: usize,
         (width, height): (usize, usize),
         rng: &mut R,
     ) -> usize {
-        // The band: every point of rows y and y + 1, with its band pixel.
         let band_rows = if y + 1 < height && window.holds_row(y + 1) {
             2
         } else {
             1
         };
-        let mut points: Vec<[f64; 2]> = Vec::new();
-        let mut pixel_of: Vec<usize> = Vec::new();
-        let mut members: Vec<Vec<usize>> = vec![Vec::new(); band_rows * width];
+        self.gather(window, y, width, band_rows);
+        self.kill_conflicts(window, y, width);
+        self.index_cells(y, width, band_rows);
+        let mut top_ups = 0;
+        // A dart may, as a last resort, take a point from a pixel of the
+        // row already mended, which then gets mended again on the next
+        // pass; the last pass may not, so it ends the row.
+        for pass in 0..MEND_PASSES {
+            let mut short = false;
+            for x in 0..width {
+                while self.count.get(x).is_some_and(|&c| c < self.n) {
+                    short = true;
+                    let settled_ok = pass + 1 < MEND_PASSES;
+                    top_ups += self.add_dart(window, (x, y), (width, band_rows), settled_ok, rng);
+                }
+            }
+            if !short {
+                break;
+            }
+        }
+        match self.method {
+            ExactMethod::Eliminate => {
+                if !self.darts.is_empty() {
+                    self.index_cells(y, width, band_rows);
+                }
+                self.eliminate(window, y, width, band_rows);
+            }
+            ExactMethod::Random => self.drop_at_random(width, rng),
+        }
+        self.store(window, y, width);
+        top_ups
+    }
+
+    /// Copies the band's points, pixel by pixel.
+    fn gather(&mut self, window: &Window, y: usize, width: usize, band_rows: usize) {
+        self.points.clear();
+        self.pixel.clear();
+        self.start.clear();
+        self.darts.clear();
         for row in 0..band_rows {
             for x in 0..width {
                 let b = row * width + x;
-                for &p in &window.slot(x, y + row).points {
-                    if let Some(list) = members.get_mut(b) {
-                        list.push(points.len());
-                    }
-                    points.push(p);
-                    pixel_of.push(b);
-                }
+                self.start.push(self.points.len());
+                let list = &window.slot(x, y + row).points;
+                self.points.extend_from_slice(list);
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    reason = "band pixels: 2 · width < 2^32"
+                )]
+                self.pixel
+                    .extend(core::iter::repeat_n(b as u32, list.len()));
             }
         }
-        // Final points of the rows above row y within reach of the band
-        // pixel at row offset `row`, column `x`.
-        let window_ref: &Window = window;
-        let above = |row: usize, x: usize| {
-            ((y + row).saturating_sub(self.pixels)..y)
-                .filter(|&yy| window_ref.holds_row(yy))
-                .flat_map(move |yy| {
-                    (x.saturating_sub(self.pixels)..=(x + self.pixels).min(width - 1))
-                        .flat_map(move |xx| window_ref.slot(xx, yy).kept.iter())
-                })
-        };
-        // Band pixels within reach of band pixel b.
-        let reach = self.pixels;
-        let near = |b: usize| {
-            let (row, x) = (b / width, b % width);
-            (row.saturating_sub(reach)..=(row + reach).min(band_rows - 1)).flat_map(move |r| {
-                (x.saturating_sub(reach)..=(x + reach).min(width - 1)).map(move |xx| r * width + xx)
+        self.start.push(self.points.len());
+        self.alive.clear();
+        self.alive.resize(self.points.len(), true);
+        self.count.clear();
+        self.count.extend(self.start.windows(2).map(|w| match w {
+            [a, b] => b - a,
+            _ => 0,
+        }));
+    }
+
+    /// The final points of the rows above row `y` near pixel column `x`
+    /// (within `rows_up` pixels).
+    fn final_above<'w>(
+        &self,
+        window: &'w Window,
+        y: usize,
+        x: usize,
+        width: usize,
+    ) -> impl Iterator<Item = &'w [f64; 2]> + 'w {
+        let reach = self.rows_up;
+        (y.saturating_sub(reach)..y)
+            .filter(move |&yy| window.holds_row(yy))
+            .flat_map(move |yy| {
+                (x.saturating_sub(reach)..=(x + reach).min(width - 1))
+                    .flat_map(move |xx| window.slot(xx, yy).kept.iter())
             })
-        };
-        let mut weight = vec![0.0; points.len()];
-        for (i, p) in points.iter().enumerate() {
-            let b = pixel_of.get(i).copied().unwrap_or(0);
-            let mut w = 0.0;
-            for nb in near(b) {
-                for &j in members.get(nb).into_iter().flatten() {
-                    if j != i
-                        && let Some(q) = points.get(j)
-                    {
-                        w += self.weight(distance_squared(p, q));
-                    }
-                }
-            }
-            w += above(b / width, b % width)
-                .map(|q| self.weight(distance_squared(p, q)))
-                .sum::<f64>();
-            if let Some(slot) = weight.get_mut(i) {
-                *slot = w;
-            }
-        }
-        let mut count: Vec<usize> = members.iter().map(Vec::len).collect();
-        let mut alive = vec![true; points.len()];
-        let mut heap: BinaryHeap<Entry> = weight
-            .iter()
-            .enumerate()
-            .map(|(i, &w)| Entry(w, i))
-            .collect();
-        while let Some(Entry(w, i)) = heap.pop() {
-            let (Some(&is_alive), Some(&current), Some(&b)) =
-                (alive.get(i), weight.get(i), pixel_of.get(i))
-            else {
+    }
+
+    /// Step 1: band points closer than `r` to a final point above are out.
+    fn kill_conflicts(&mut self, window: &Window, y: usize, width: usize) {
+        #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+        let top = y as f64;
+        let r2 = self.radius_squared;
+        let r = r2.sqrt();
+        for i in 0..self.points.len() {
+            let (Some(&p), Some(&b)) = (self.points.get(i), self.pixel.get(i)) else {
                 continue;
             };
-            if !is_alive || w != current || count.get(b).is_none_or(|&c| c <= self.n) {
+            if p[1] - top >= r {
                 continue;
             }
-            if let (Some(a), Some(c)) = (alive.get_mut(i), count.get_mut(b)) {
+            let x = b as usize % width;
+            if self
+                .final_above(window, y, x, width)
+                .any(|q| distance_squared(&p, q) < r2)
+                && let (Some(a), Some(c)) = (self.alive.get_mut(i), self.count.get_mut(b as usize))
+                && *a
+            {
                 *a = false;
                 *c -= 1;
             }
-            let Some(&p) = points.get(i) else { continue };
-            for nb in near(b) {
-                for &j in members.get(nb).into_iter().flatten() {
-                    if alive.get(j) == Some(&true)
-                        && let (Some(q), Some(wj)) = (points.get(j), weight.get_mut(j))
-                    {
-                        let dw = self.weight(distance_squared(&p, q));
-                        if dw > 0.0 {
-                            *wj -= dw;
-                            heap.push(Entry(*wj, j));
+        }
+    }
+
+    /// The local grid cell of `p` (band row `y` at the top).
+    fn cell_of(&self, p: &[f64; 2], y: usize, width: usize, band_rows: usize) -> (usize, usize) {
+        #[expect(clippy::cast_precision_loss, reason = "small counts")]
+        let (m, top) = (self.cells as f64, y as f64);
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "saturating casts, clamped to the band"
+        )]
+        let cx = ((p[0] * m) as usize).min(width * self.cells - 1);
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "saturating casts, clamped to the band"
+        )]
+        let cy = (((p[1] - top) * m).max(0.0) as usize).min(band_rows * self.cells - 1);
+        (cx, cy)
+    }
+
+    /// Sorts the live points by local grid cell (a counting sort).
+    fn index_cells(&mut self, y: usize, width: usize, band_rows: usize) {
+        let columns = width * self.cells;
+        let cells = columns * band_rows * self.cells;
+        // Each point's cell, or `usize::MAX` for a dead one.
+        let mut cell_of = core::mem::take(&mut self.cell_of);
+        cell_of.clear();
+        cell_of.extend(self.points.iter().zip(&self.alive).map(|(p, &alive)| {
+            if alive {
+                let (cx, cy) = self.cell_of(p, y, width, band_rows);
+                cy * columns + cx
+            } else {
+                usize::MAX
+            }
+        }));
+        self.cell_start.clear();
+        self.cell_start.resize(cells + 1, 0);
+        for &c in &cell_of {
+            if let Some(count) = c.checked_add(1).and_then(|k| self.cell_start.get_mut(k)) {
+                *count += 1;
+            }
+        }
+        let mut sum = 0;
+        for c in &mut self.cell_start {
+            sum += *c;
+            *c = sum;
+        }
+        self.cell_items.clear();
+        self.cell_items.resize(sum, 0);
+        // `cell_start[c]` walks up to `cell_start[c + 1]` as cell c fills;
+        // shifted back afterwards.
+        for (i, &c) in cell_of.iter().enumerate() {
+            if let Some(at) = self.cell_start.get_mut(c) {
+                #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
+                if let Some(slot) = self.cell_items.get_mut(*at) {
+                    *slot = i as u32;
+                }
+                *at += 1;
+            }
+        }
+        self.cell_of = cell_of;
+        for c in (1..=cells).rev() {
+            let prev = self.cell_start.get(c - 1).copied().unwrap_or(0);
+            if let Some(s) = self.cell_start.get_mut(c) {
+                *s = prev;
+            }
+        }
+        if let Some(s) = self.cell_start.first_mut() {
+            *s = 0;
+        }
+    }
+
+    /// Calls `visit` with the index of every point indexed in the local
+    /// grid within `cell_reach` cells of `p`'s cell (dead ones included:
+    /// points die after indexing).
+    fn near(
+        &self,
+        p: &[f64; 2],
+        y: usize,
+        width: usize,
+        band_rows: usize,
+        mut visit: impl FnMut(u32),
+    ) {
+        let (cx, cy) = self.cell_of(p, y, width, band_rows);
+        let columns = width * self.cells;
+        let rows = band_rows * self.cells;
+        let k = self.cell_reach;
+        for yy in cy.saturating_sub(k)..=(cy + k).min(rows - 1) {
+            let first = yy * columns + cx.saturating_sub(k);
+            let last = yy * columns + (cx + k).min(columns - 1);
+            let (Some(&a), Some(&b)) = (self.cell_start.get(first), self.cell_start.get(last + 1))
+            else {
+                continue;
+            };
+            for &i in self.cell_items.get(a..b).unwrap_or(&[]) {
+                visit(i);
+            }
+        }
+    }
+
+    /// Step 2: one more point for the short pixel `(x, y)`; 1 if it had to
+    /// be a top-up, else 0.
+    fn add_dart<R: Rng + ?Sized>(
+        &mut self,
+        window: &mut Window,
+        (x, y): (usize, usize),
+        (width, band_rows): (usize, usize),
+        settled_ok: bool,
+        rng: &mut R,
+    ) -> usize {
+        #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
+        let (fx, fy) = (x as f64, y as f64);
+        let mut darts = [[0.0; 2]; DARTS_MORE];
+        let mut thrown = 0;
+        // Strict with a few darts, then lenient with them, then lenient
+        // with many, then (if allowed) taking from any pixel: most short
+        // pixels take the first.
+        let stages = [
+            (Take::Excess, DARTS),
+            (Take::Unsettled, DARTS),
+            (Take::Unsettled, DARTS_MORE),
+            (Take::Any, DARTS_MORE),
+        ];
+        for (take, count) in stages {
+            if take == Take::Any && !settled_ok {
+                continue;
+            }
+            for d in darts.get_mut(thrown..count).unwrap_or(&mut []) {
+                *d = [fx + unit(rng), fy + unit(rng)];
+                // Rounding onto the far edge: the pixel's corner instead.
+                if d[0] >= fx + 1.0 || d[1] >= fy + 1.0 {
+                    *d = [fx, fy];
+                }
+            }
+            thrown = thrown.max(count);
+            let mut best: Option<([f64; 2], Blockers)> = None;
+            for d in darts.get(..count).unwrap_or(&[]) {
+                if let Some(b) = self.blockers(window, d, (x, y), width, band_rows, take)
+                    && best.is_none_or(|(_, c)| b.count < c.count)
+                {
+                    best = Some((*d, b));
+                    if b.count == 0 {
+                        break;
+                    }
+                }
+            }
+            if let Some((d, b)) = best {
+                for &i in b.items.get(..b.count).unwrap_or(&[]) {
+                    self.kill(i as usize);
+                }
+                self.push_dart(d, x);
+                // The sweep's later points keep their distance from it.
+                // Its cell can only hold a point that is out (a blocker,
+                // or one thinned before): two points in one cell are
+                // closer than r.
+                window.replace(d);
+                return 0;
+            }
+        }
+        // A top-up: the dart farthest from every point that stays.
+        let mut best = (f64::NEG_INFINITY, [fx, fy]);
+        for d in &darts {
+            let mut nearest = self
+                .final_above(window, y, x, width)
+                .map(|q| distance_squared(d, q))
+                .fold(f64::INFINITY, f64::min);
+            self.near(d, y, width, band_rows, |i| {
+                if self.alive.get(i as usize) == Some(&true)
+                    && let Some(q) = self.points.get(i as usize)
+                {
+                    nearest = nearest.min(distance_squared(d, q));
+                }
+            });
+            for &i in &self.darts {
+                if let Some(q) = self.points.get(i as usize) {
+                    nearest = nearest.min(distance_squared(d, q));
+                }
+            }
+            if nearest > best.0 {
+                best = (nearest, *d);
+            }
+        }
+        self.push_dart(best.1, x);
+        1
+    }
+
+    fn kill(&mut self, i: usize) {
+        if let (Some(a), Some(&b)) = (self.alive.get_mut(i), self.pixel.get(i))
+            && *a
+        {
+            *a = false;
+            if let Some(c) = self.count.get_mut(b as usize) {
+                *c -= 1;
+            }
+        }
+    }
+
+    fn push_dart(&mut self, d: [f64; 2], x: usize) {
+        #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
+        self.darts.push(self.points.len() as u32);
+        self.points.push(d);
+        #[expect(clippy::cast_possible_truncation, reason = "x < width < 2^32")]
+        self.pixel.push(x as u32);
+        self.alive.push(true);
+        if let Some(c) = self.count.get_mut(x) {
+            *c += 1;
+        }
+    }
+
+    /// The band points closer than `r` to dart `d` in pixel `(x, y)`, if
+    /// they may all be removed: each in another pixel, which `take` allows
+    /// to lose it, at most [`MAX_BLOCKERS`]; and no final point above or
+    /// dart is that close.
+    fn blockers(
+        &self,
+        window: &Window,
+        d: &[f64; 2],
+        (x, y): (usize, usize),
+        width: usize,
+        band_rows: usize,
+        take: Take,
+    ) -> Option<Blockers> {
+        let r2 = self.radius_squared;
+        for &i in &self.darts {
+            if self
+                .points
+                .get(i as usize)
+                .is_some_and(|q| distance_squared(d, q) < r2)
+            {
+                return None;
+            }
+        }
+        #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+        if d[1] - (y as f64) < r2.sqrt()
+            && self
+                .final_above(window, y, x, width)
+                .any(|q| distance_squared(d, q) < r2)
+        {
+            return None;
+        }
+        let mut found = Blockers {
+            count: 0,
+            items: [0; MAX_BLOCKERS],
+        };
+        let mut ok = true;
+        self.near(d, y, width, band_rows, |i| {
+            if !ok
+                || self.alive.get(i as usize) != Some(&true)
+                || self
+                    .points
+                    .get(i as usize)
+                    .is_none_or(|q| distance_squared(d, q) >= r2)
+            {
+                return;
+            }
+            let b32 = self.pixel.get(i as usize).copied().unwrap_or(0);
+            let b = b32 as usize;
+            // Points this dart already takes from pixel b, this one included.
+            let taken = 1 + found
+                .items
+                .get(..found.count)
+                .unwrap_or(&[])
+                .iter()
+                .filter(|&&j| self.pixel.get(j as usize) == Some(&b32))
+                .count();
+            let left = self.count.get(b).copied().unwrap_or(0);
+            let may = b != x
+                && found.count < MAX_BLOCKERS
+                && match take {
+                    Take::Excess => left >= self.n + taken,
+                    Take::Unsettled => left >= self.n + taken || b > x,
+                    Take::Any => true,
+                };
+            if let (true, Some(slot)) = (may, found.items.get_mut(found.count)) {
+                *slot = i;
+                found.count += 1;
+            } else {
+                ok = false;
+            }
+        });
+        ok.then_some(found)
+    }
+
+    /// Step 3, [`ExactMethod::Eliminate`]: weighted sample elimination of
+    /// the band down to `n` per pixel.
+    fn eliminate(&mut self, window: &Window, y: usize, width: usize, band_rows: usize) {
+        #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+        let top = y as f64;
+        let total = self.points.len();
+        self.weight.clear();
+        self.weight.resize(total, 0.0);
+        self.link_start.clear();
+        self.links.clear();
+        let reach2 = self.reach * self.reach;
+        for i in 0..total {
+            self.link_start.push(self.links.len());
+            let (Some(&p), Some(true)) = (self.points.get(i), self.alive.get(i).copied()) else {
+                continue;
+            };
+            let mut w = 0.0;
+            let mut links = core::mem::take(&mut self.links);
+            self.near(&p, y, width, band_rows, |j| {
+                if j as usize != i
+                    && self.alive.get(j as usize) == Some(&true)
+                    && let Some(q) = self.points.get(j as usize)
+                {
+                    let d2 = distance_squared(&p, q);
+                    if d2 < reach2 {
+                        let t = self.weight_of(d2);
+                        w += t;
+                        links.push((j, t));
+                    }
+                }
+            });
+            self.links = links;
+            if p[1] - top < self.reach {
+                let b = self.pixel.get(i).copied().unwrap_or(0) as usize;
+                w += self
+                    .final_above(window, y, b % width, width)
+                    .map(|q| self.weight_of(distance_squared(&p, q)))
+                    .sum::<f64>();
+            }
+            if let Some(slot) = self.weight.get_mut(i) {
+                *slot = w;
+            }
+        }
+        self.link_start.push(self.links.len());
+        self.heap.clear();
+        for i in 0..total {
+            let over = self
+                .pixel
+                .get(i)
+                .and_then(|&b| self.count.get(b as usize))
+                .is_some_and(|&c| c > self.n);
+            if over
+                && self.alive.get(i) == Some(&true)
+                && let Some(&w) = self.weight.get(i)
+            {
+                #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
+                self.heap.push(Entry(w * self.edge_factor(i), i as u32));
+            }
+        }
+        while let Some(Entry(w, i)) = self.heap.pop() {
+            let i = i as usize;
+            let (Some(&is_alive), Some(&current), Some(&b)) =
+                (self.alive.get(i), self.weight.get(i), self.pixel.get(i))
+            else {
+                continue;
+            };
+            if !is_alive
+                || w != current * self.edge_factor(i)
+                || self.count.get(b as usize).is_none_or(|&c| c <= self.n)
+            {
+                continue;
+            }
+            self.kill(i);
+            let (Some(&a), Some(&z)) = (self.link_start.get(i), self.link_start.get(i + 1)) else {
+                continue;
+            };
+            for k in a..z {
+                let Some(&(j32, t)) = self.links.get(k) else {
+                    continue;
+                };
+                let j = j32 as usize;
+                if self.alive.get(j) == Some(&true)
+                    && let Some(wj) = self.weight.get_mut(j)
+                {
+                    *wj -= t;
+                    let still_over = self
+                        .pixel
+                        .get(j)
+                        .and_then(|&c| self.count.get(c as usize))
+                        .is_some_and(|&c| c > self.n);
+                    if still_over {
+                        let f = self.edge_factor(j);
+                        if let Some(&wj) = self.weight.get(j) {
+                            self.heap.push(Entry(wj * f, j32));
                         }
                     }
                 }
             }
         }
-        // Row y's survivors, in generation order, topped up if short.
-        let mut top_ups = 0;
-        let mut results: Vec<Vec<[f64; 2]>> = Vec::with_capacity(width);
-        for x in 0..width {
-            let mut mine: Vec<[f64; 2]> = members
-                .get(x)
-                .into_iter()
-                .flatten()
-                .filter(|&&i| alive.get(i) == Some(&true))
-                .filter_map(|&i| points.get(i).copied())
-                .collect();
-            if mine.len() < self.n {
-                let others: Vec<[f64; 2]> = near(x)
-                    .flat_map(|nb| members.get(nb).into_iter().flatten())
-                    .filter(|&&i| alive.get(i) == Some(&true))
-                    .filter_map(|&i| points.get(i).copied())
-                    .chain(above(0, x).copied())
-                    .collect();
-                top_ups += self.top_up(&mut mine, &others, (x, y), rng);
-            }
-            results.push(mine);
-        }
-        for (x, mine) in results.into_iter().enumerate() {
-            if let Some(slot) = window.slot_mut(x, y) {
-                slot.kept.clone_from(&mine);
-                slot.points = mine;
-            }
-        }
-        top_ups
     }
 
-    /// Adds best-candidate darts to pixel `(x, y)` until it holds `n`.
-    fn top_up<R: Rng + ?Sized>(
-        &self,
-        mine: &mut Vec<[f64; 2]>,
-        others: &[[f64; 2]],
-        (x, y): (usize, usize),
-        rng: &mut R,
-    ) -> usize {
-        #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
-        let (fx, fy) = (x as f64, y as f64);
-        let mut placed = 0;
-        while mine.len() < self.n {
-            let mut best = (f64::NEG_INFINITY, [fx, fy]);
-            for _ in 0..DARTS {
-                let dart = [fx + unit(rng), fy + unit(rng)];
-                if dart[0] >= fx + 1.0 || dart[1] >= fy + 1.0 {
-                    continue;
-                }
-                let nearest = mine
-                    .iter()
-                    .chain(others)
-                    .map(|q| distance_squared(&dart, q))
-                    .fold(f64::INFINITY, f64::min);
-                if nearest > best.0 {
-                    best = (nearest, dart);
+    /// Step 3, [`ExactMethod::Random`]: each pixel of row `y` drops its
+    /// excess points uniformly at random.
+    fn drop_at_random<R: Rng + ?Sized>(&mut self, width: usize, rng: &mut R) {
+        for x in 0..width {
+            let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
+                continue;
+            };
+            // Darts only go to short pixels, which end at n: an excess
+            // pixel's live points are all among its gathered ones.
+            while let Some(&c) = self.count.get(x)
+                && c > self.n
+            {
+                if self.bias == [0.0; 3] {
+                    let mut k = below(rng, c);
+                    for i in a..z {
+                        if self.alive.get(i) == Some(&true) {
+                            if k == 0 {
+                                self.kill(i);
+                                break;
+                            }
+                            k -= 1;
+                        }
+                    }
+                } else {
+                    let total: f64 = (a..z)
+                        .filter(|&i| self.alive.get(i) == Some(&true))
+                        .map(|i| self.edge_factor(i))
+                        .sum();
+                    let mut t = unit(rng) * total;
+                    let mut last = None;
+                    for i in a..z {
+                        if self.alive.get(i) == Some(&true) {
+                            last = Some(i);
+                            t -= self.edge_factor(i);
+                            if t < 0.0 {
+                                break;
+                            }
+                        }
+                    }
+                    if let Some(i) = last {
+                        self.kill(i);
+                    }
                 }
             }
-            mine.push(best.1);
-            placed += 1;
         }
-        placed
+    }
+
+    /// Row `y`'s live points, in generation order (darts last), become its
+    /// points and final points.
+    fn store(&self, window: &mut Window, y: usize, width: usize) {
+        for x in 0..width {
+            let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
+                continue;
+            };
+            let mine = (a..z).chain(
+                self.darts
+                    .iter()
+                    .map(|&i| i as usize)
+                    .filter(|&i| self.pixel.get(i).is_some_and(|&b| b as usize == x)),
+            );
+            if let Some(slot) = window.slot_mut(x, y) {
+                slot.points.clear();
+                slot.kept.clear();
+                for i in mine {
+                    if self.alive.get(i) == Some(&true)
+                        && let Some(&p) = self.points.get(i)
+                    {
+                        slot.points.push(p);
+                        slot.kept.push(p);
+                    }
+                }
+            }
+        }
     }
 }

@@ -302,6 +302,18 @@ impl RollingGrid {
         }
     }
 
+    /// Stores `p` in its cell, over whatever the cell held: exact mode's
+    /// darts, whose cell can only hold a point thinned out (any two points
+    /// in one cell are closer than `r`, and a dart keeps `r` from every
+    /// point that stays).
+    pub(crate) fn replace(&mut self, p: [f64; 2]) {
+        let (cx, cy, _) = self.locate(&p);
+        let index = self.index(cx, cy);
+        if let Some(cell) = self.cells.get_mut(index) {
+            *cell = p;
+        }
+    }
+
     /// Stores `p` in its cell; `false` (storing nothing) if the cell is
     /// taken, which only rounding can cause, or lies outside the array.
     #[inline(always)]

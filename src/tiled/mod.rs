@@ -43,7 +43,8 @@ use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::sampler::check_radius_and_attempts;
 use crate::vector::add;
 use core::iter::FusedIterator;
-use exact::{OVERSAMPLE, Thinning};
+pub use exact::ExactMethod;
+use exact::{DEFAULT_OVERSAMPLE, Exact};
 use queue::BandQueue;
 use rand::Rng;
 use window::{Window, WindowPlan};
@@ -143,22 +144,68 @@ pub struct TiledBuilder {
     max_window_bytes: u64,
     /// Exact mode: exactly this many points in every pixel.
     exact: Option<u32>,
+    /// Exact mode: how excess points are dropped.
+    exact_method: ExactMethod,
+    /// Exact mode: the sweep's points per pixel over `n`.
+    exact_oversample: f64,
+    /// Exact mode: β along x and y, how much more readily points near a
+    /// pixel's centre are dropped; `None` for the calibrated values.
+    exact_bias: Option<[f64; 3]>,
 }
 
 impl TiledBuilder {
     /// Exact mode: exactly `n` points in every pixel (overrides the
-    /// spacing). The sweep runs at the radius that gives about `2n` points
-    /// per pixel and each pixel is thinned to `n` by weighted sample
-    /// elimination (Yuksel 2015) against its neighbours; see
-    /// [`Pixels::top_ups`] for the rare pixels that need extra points. The
-    /// minimum distance is then that of the oversampled set,
-    /// [`Tiled::radius`], except around top-ups.
+    /// spacing). The sweep runs at the radius that gives about `s·n` points
+    /// per pixel (`s` from [`exact_oversample`](Self::exact_oversample),
+    /// 1.25 by default) and each row is thinned to `n` per pixel (see
+    /// [`exact_method`](Self::exact_method)). A pixel the sweep left short
+    /// gets darts at least [`Tiled::radius`] from every point kept, room
+    /// made by removing points of neighbouring pixels that have more than
+    /// `n`. So the minimum distance is the sweep's radius,
+    /// [`Tiled::radius`], except around top-ups: darts placed closer
+    /// because no room could be made, which [`Pixels::top_ups`] counts (none
+    /// at the default oversampling in our runs; some at `1.0`).
     ///
     /// Exact mode always uses [`Scheme::Sweep`]: it thins whole rows
     /// jointly (see the `exact` module docs in the source).
     #[must_use]
     pub fn exact(mut self, n: u32) -> Self {
         self.exact = Some(n);
+        self
+    }
+
+    /// Exact mode: how a pixel's excess points are dropped (default
+    /// [`ExactMethod::Eliminate`]). Ignored outside exact mode.
+    #[must_use]
+    pub fn exact_method(mut self, method: ExactMethod) -> Self {
+        self.exact_method = method;
+        self
+    }
+
+    /// Exact mode: the oversampling `s`, the sweep's points per pixel over
+    /// the `n` kept (default 1.25, from 1 to 16). The kept set's relative
+    /// radius ρ is about 0.73 / √s (0.65 at the default); a larger `s`
+    /// leaves fewer pixels short and gives elimination more choice, at the
+    /// cost of speed. Ignored outside exact mode.
+    #[must_use]
+    pub fn exact_oversample(mut self, s: f64) -> Self {
+        self.exact_oversample = s;
+        self
+    }
+
+    /// Exact mode: overrides the edge correction `[βx, βy]`, each in
+    /// `-0.5 ..= 0.5`. The method drops a pixel's excess points with a
+    /// preference `1 - βx·h(u) - βy·h(v)` by where they lie in the pixel
+    /// (`h(t) = (2t - 1)² - 1/3`: `2/3` at the edges, `-1/3` at the
+    /// centre), so a positive β keeps more points near the edges. Both
+    /// methods, left alone, leave the edge bands a few per cent sparse at
+    /// small `n`; by default β comes from a table calibrated with
+    /// `examples/stream.rs` so that the density's first harmonic across a
+    /// pixel vanishes. `[0.0, 0.0]` turns the correction off. Ignored
+    /// outside exact mode.
+    #[must_use]
+    pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
+        self.exact_bias = Some(beta);
         self
     }
 
@@ -212,7 +259,9 @@ impl TiledBuilder {
     /// # Errors
     /// [`Error::EmptyRaster`] if the width (axis 0) or height (axis 1) is
     /// 0; [`Error::InvalidPerPixel`] if the samples per pixel are not a
-    /// positive finite number, or exact mode asks for 0 points per pixel;
+    /// positive finite number, or exact mode asks for 0 points per pixel,
+    /// an oversampling outside `1.0 ..= 16.0` or an edge correction outside
+    /// `-0.5 ..= 0.5`;
     /// [`Error::InvalidRadius`] if the radius — given, or derived from the
     /// samples per pixel — is NaN, infinite, `<= 0` or outside
     /// `1e-150 ..= 1e150`, or if no spacing was given; [`Error::ZeroAttempts`]
@@ -236,7 +285,15 @@ impl TiledBuilder {
         };
         let radius = match (self.exact, self.spacing) {
             (Some(0), _) => return Err(Error::InvalidPerPixel),
-            (Some(n), _) => (density / (OVERSAMPLE * f64::from(n))).sqrt(),
+            (Some(_), _)
+                if !(1.0..=16.0).contains(&self.exact_oversample)
+                    || self
+                        .exact_bias
+                        .is_some_and(|b| !b.iter().all(|v| (-0.5..=0.5).contains(v))) =>
+            {
+                return Err(Error::InvalidPerPixel);
+            }
+            (Some(n), _) => (density / (self.exact_oversample * f64::from(n))).sqrt(),
             (None, Spacing::Unset) => return Err(Error::InvalidRadius),
             (None, Spacing::Radius(r)) => r,
             (None, Spacing::PerPixel(n)) if n > 0.0 && n.is_finite() => (density / n).sqrt(),
@@ -294,6 +351,9 @@ impl Tiled {
             scheme: Scheme::default(),
             max_window_bytes: DEFAULT_MAX_WINDOW_BYTES,
             exact: None,
+            exact_method: ExactMethod::default(),
+            exact_oversample: DEFAULT_OVERSAMPLE,
+            exact_bias: None,
         }
     }
 
@@ -350,10 +410,10 @@ impl Tiled {
             radius_squared: self.radius * self.radius,
             started: false,
             next: 0,
-            thinning: s
+            exact: s
                 .exact
                 .and_then(|n| usize::try_from(n).ok())
-                .map(Thinning::new),
+                .map(|n| Exact::new(n, s.exact_method, self.radius, s.exact_bias)),
             top_ups: 0,
         }
     }
@@ -393,7 +453,7 @@ pub struct Pixels<R> {
     /// Index of the next pixel in scan order.
     next: usize,
     /// Exact mode's elimination.
-    thinning: Option<Thinning>,
+    exact: Option<Exact>,
     top_ups: u64,
 }
 
@@ -429,22 +489,18 @@ impl<R: Rng> Pixels<R> {
         if x == 0 {
             self.window.advance_to_row(y);
         }
-        match (self.scheme, self.thinning) {
-            // Exact mode always sweeps: it thins whole rows.
-            (Scheme::Paper, None) => self.finish_alone(x, y),
-            (_, thinning) if x == 0 => {
-                self.finish_row(y);
-                if let Some(thinning) = thinning {
-                    self.window.fill_slots(y);
-                    self.window.fill_slots(y + 1);
-                    let dims = (self.width, self.height);
-                    let placed = thinning.thin_row(&mut self.window, y, dims, &mut self.rng);
-                    self.top_ups += placed as u64;
-                } else {
-                    self.window.gather_row(y);
-                }
+        // Exact mode always sweeps: it thins whole rows.
+        if self.scheme == Scheme::Paper && self.exact.is_none() {
+            self.finish_alone(x, y);
+        } else if x == 0 {
+            self.finish_row(y);
+            if let Some(exact) = &mut self.exact {
+                let dims = (self.width, self.height);
+                let placed = exact.thin_row(&mut self.window, y, dims, &mut self.rng);
+                self.top_ups += placed as u64;
+            } else {
+                self.window.gather_row(y);
             }
-            _ => {}
         }
         self.next += 1;
         Some((x, y))
@@ -453,11 +509,14 @@ impl<R: Rng> Pixels<R> {
     /// Whether the pixels' points come from per-pixel lists (the paper's
     /// scheme, exact mode) rather than the sweep's gathered rows.
     fn lists(&self) -> bool {
-        self.scheme == Scheme::Paper || self.thinning.is_some()
+        self.scheme == Scheme::Paper || self.exact.is_some()
     }
 
-    /// Exact mode: how many points so far were top-up darts, placed in
-    /// pixels the oversampled sweep left with fewer than `n` points.
+    /// Exact mode: how many points so far were top-ups: darts placed in a
+    /// pixel the oversampled sweep left with fewer than `n` points where no
+    /// room could be made at the sweep's radius, so closer than
+    /// [`Tiled::radius`] to some point. Zero means the whole stream keeps
+    /// that radius.
     pub fn top_ups(&self) -> u64 {
         self.top_ups
     }
@@ -613,7 +672,8 @@ impl<R: Rng> Pixels<R> {
                 reason = "inside the raster, so in 0..width and 0..height"
             )]
             let pixel = (c[0] as usize, c[1] as usize);
-            if self.window.insert(c, pixel, only_current) {
+            let list = only_current || self.exact.is_some();
+            if self.window.insert(c, pixel, (list, only_current)) {
                 return Some(c);
             }
         }
@@ -630,7 +690,8 @@ impl<R: Rng> Pixels<R> {
             if self.pixel_of(&p) != Some((x, y)) || self.window.conflict(&p).is_some() {
                 continue;
             }
-            if self.window.insert(p, (x, y), self.scheme == Scheme::Paper) {
+            let paper = self.scheme == Scheme::Paper;
+            if self.window.insert(p, (x, y), (paper || self.exact.is_some(), paper)) {
                 if self.scheme != Scheme::Paper {
                     self.push(p);
                 }

@@ -284,27 +284,6 @@ impl Window {
         }
     }
 
-    /// Exact mode: fills pixel row `y`'s lists from the grid (replacing
-    /// what they held).
-    pub(crate) fn fill_slots(&mut self, y: usize) {
-        if !self.holds_row(y) {
-            return;
-        }
-        self.gather_row(y);
-        for x in 0..self.plan.width {
-            let index = self.slot_index(x, y);
-            if let (Some(slot), Some(&a), Some(&b)) = (
-                self.slots.get_mut(index),
-                self.starts.get(x),
-                self.starts.get(x + 1),
-            ) {
-                slot.points.clear();
-                slot.points
-                    .extend_from_slice(self.row.get(a..b).unwrap_or(&[]));
-            }
-        }
-    }
-
     fn slot_index(&self, x: usize, y: usize) -> usize {
         if x < self.plan.width {
             (y % self.plan.ring_rows()) * self.plan.width + x
@@ -332,12 +311,23 @@ impl Window {
         self.grid.seed(p, limit, take);
     }
 
-    /// Stores `p` in the grid, counts it in its pixel, and with `lists`
-    /// (the paper's scheme) adds it to its pixel's points and active
-    /// points. Returns `false` (storing nothing) if its cell is taken,
-    /// which only rounding can cause; the caller treats it as a failed
-    /// attempt.
-    pub(crate) fn insert(&mut self, p: [f64; 2], pixel: (usize, usize), lists: bool) -> bool {
+    /// Stores exact mode's dart `p` in the grid only (see
+    /// `RollingGrid::replace`), so that the sweep keeps its distance from it.
+    pub(crate) fn replace(&mut self, p: [f64; 2]) {
+        self.grid.replace(p);
+    }
+
+    /// Stores `p` in the grid, counts it in its pixel, with `list` adds
+    /// it to its pixel's points (the paper's scheme, exact mode) and with
+    /// `active` to its active points (the paper's scheme). Returns `false`
+    /// (storing nothing) if its cell is taken, which only rounding can
+    /// cause; the caller treats it as a failed attempt.
+    pub(crate) fn insert(
+        &mut self,
+        p: [f64; 2],
+        pixel: (usize, usize),
+        (list, active): (bool, bool),
+    ) -> bool {
         let index = self.slot_index(pixel.0, pixel.1);
         if index >= self.counts.len() || !self.grid.insert(p) {
             return false;
@@ -345,9 +335,11 @@ impl Window {
         if let Some(count) = self.counts.get_mut(index) {
             *count = count.saturating_add(1);
         }
-        if lists && let Some(slot) = self.slots.get_mut(index) {
+        if list && let Some(slot) = self.slots.get_mut(index) {
             slot.points.push(p);
-            slot.active.push(p);
+            if active {
+                slot.active.push(p);
+            }
         }
         true
     }
