@@ -63,6 +63,10 @@ impl Reference {
 /// a file there has the same scene key (which covers the size), count and
 /// seeds, otherwise rendered (and written there).
 ///
+/// The key is a hash of the scene's description (camera, size, objects,
+/// light, shading), not of the tracer's code: after changing how the tracer
+/// shades or samples the light, empty the directory.
+///
 /// # Errors
 /// A message if rendering fails or the cache cannot be written.
 pub(crate) fn reference(
