@@ -269,6 +269,37 @@ mod tests {
     }
 
     #[test]
+    fn effective_lengths_interpolate_and_extend() {
+        let table = &AXIS_2D[0][0];
+        assert_eq!(effective_length(table, 0.0), table[0], "below the table");
+        assert_eq!(effective_length(table, 2.0), table[20], "on a tabulated x");
+        let mid = effective_length(table, 2.125);
+        assert!((mid - (table[20] + table[21]) / 2.0).abs() < 1e-12, "{mid}");
+        let far = effective_length(table, 116.0);
+        assert!((far - (100.0 + table[34])).abs() < 1e-9, "{far}");
+    }
+
+    #[test]
+    fn the_radius_found_gives_the_count_asked_for() {
+        for (extent, periodic, sphere) in [
+            ([1.0, 1.0, 1.0], [false; 3], false),
+            ([5.0, 0.5, 1.0], [true, false, true], true),
+        ] {
+            for count in [1000_u64, 12_345, 1 << 30] {
+                let r = radius_for_count(&extent, &periodic, sphere, count);
+                #[expect(clippy::cast_precision_loss, reason = "test")]
+                let target = count as f64;
+                let at = expected_count(&extent, &periodic, sphere, r);
+                assert!((at / target - 1.0).abs() < 1e-9, "{count}: {at} at r = {r}");
+                let beyond = expected_count(&extent, &periodic, sphere, r * (1.0 + 1e-6));
+                assert!(beyond < target, "{count}: the largest such radius");
+            }
+        }
+        let none = radius_for_count(&[1.0; 9], &[false; 9], false, 10);
+        assert!(none.is_nan(), "no table past 8-D");
+    }
+
+    #[test]
     fn a_lattice_at_the_packing_density_is_one() {
         // Simple cubic lattice in 1-D: spacing r, density 1.
         let got = relative_radius::<1>(0.1, 10, 1.0).unwrap();
