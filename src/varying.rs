@@ -52,6 +52,9 @@ pub struct Varying<const N: usize, F> {
     cells_per_axis: [u32; N],
     /// The first point of each cell (row-major, axis 0 fastest), or `NONE`.
     heads: Vec<u32>,
+    /// The 3^N neighbours of a cell away from every face, as offsets in
+    /// `heads`, its own first.
+    deltas: Vec<isize>,
     /// The next point in the same cell, or `NONE`.
     next: Vec<u32>,
     points: Vec<[f64; N]>,
@@ -78,7 +81,7 @@ impl<const N: usize> PoissonDisk<N> {
     ///
     /// The guarantee is symmetric, so it does not depend on which point
     /// came first. Speed: with `r_max / r_min = 4` (a linear field), a
-    /// whole `points --radius-range` run took 3.5× (2-D) and 3.7× (3-D)
+    /// whole `points --radius-range` run took 3.4× (2-D) and 3.1× (3-D)
     /// the CPU time of a fixed radius making the same number of points
     /// (README has the commands).
     ///
@@ -148,6 +151,22 @@ impl<const N: usize> PoissonDisk<N> {
         if needed > budget {
             return Err(Error::GridTooLarge { needed, budget });
         }
+        let mut deltas = Vec::new();
+        for t in 0..3_usize.pow(u32::try_from(N).unwrap_or(0)) {
+            let (mut digits, mut delta, mut stride) = (t, 0_isize, 1_isize);
+            for &m in &cells_per_axis {
+                // Digit 0 is offset 0, so that t = 0 is the cell itself.
+                let o = match digits % 3 {
+                    0 => 0,
+                    1 => 1,
+                    _ => -1,
+                };
+                digits /= 3;
+                delta += o * stride;
+                stride = stride.saturating_mul(isize::try_from(m).unwrap_or(isize::MAX));
+            }
+            deltas.push(delta);
+        }
         Ok(Varying {
             rng: seeded_rng(seed),
             field,
@@ -163,6 +182,7 @@ impl<const N: usize> PoissonDisk<N> {
             side,
             cells_per_axis,
             heads: vec![NONE; cells],
+            deltas,
             next: Vec::new(),
             points: Vec::new(),
             radii: Vec::new(),
@@ -216,6 +236,29 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
     /// every point of the 3^N cells around `p`'s is checked.
     fn blocked(&self, p: &[f64; N], r: f64) -> Option<usize> {
         let centre = self.cell_of(p);
+        // Away from every face (and the wrap), the neighbours are fixed
+        // offsets in `heads`.
+        let inner = centre
+            .iter()
+            .zip(&self.cells_per_axis)
+            .all(|(&c, &m)| c >= 1 && c + 2 <= m);
+        if inner {
+            let base = self.linear(&centre);
+            for &delta in &self.deltas {
+                let Some(cell) = base.checked_add_signed(delta) else {
+                    continue;
+                };
+                let mut k = self.heads.get(cell).copied().unwrap_or(NONE);
+                while k != NONE {
+                    let i = k as usize;
+                    if self.too_close(p, r, i) {
+                        return Some(i);
+                    }
+                    k = self.next.get(i).copied().unwrap_or(NONE);
+                }
+            }
+            return None;
+        }
         let neighbourhood = 3_usize.pow(u32::try_from(N).unwrap_or(u32::MAX));
         'cells: for t in 0..neighbourhood {
             let mut cell = [0u32; N];
