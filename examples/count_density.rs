@@ -2,7 +2,8 @@
 //! how many points the sampler actually makes per `r^N`, in the interior of
 //! a large periodic box and along thin axes, for each dimension and
 //! candidate kind at the default `k = 30`. Run it as
-//! `cargo run --release --example count_density -- interior` (or `axis`);
+//! `cargo run --release --example count_density -- interior` (or `axis`,
+//! `cube`);
 //! it prints the tables that `src/density.rs` holds (`INTERIOR`, `AXIS_2D`,
 //! `AXIS_3D`). `tests/count_mode.rs` checks the count mode built on them.
 
@@ -37,6 +38,9 @@ enum What {
     Interior,
     /// Effective length of one axis of length x·r, in units of r
     Axis,
+    /// From 4-D to 8-D, the extra length c of a bounded axis, from bounded
+    /// cubes x radii wide: count = interior · (x + c)^N
+    Cube,
 }
 
 const KINDS: [(Candidates, &str); 2] = [
@@ -116,6 +120,14 @@ fn axis<const N: usize>(args: &Args, interior: [f64; 2]) {
     }
 }
 
+fn cube<const N: usize>(args: &Args, interior: f64, widths: &[f64]) {
+    for &x in widths {
+        let (mean, _) = counts([x; N], [false; N], 1.0, Candidates::Annulus, args.seeds);
+        let c = (mean / interior).powf(1.0 / N as f64) - x;
+        println!("{N}-D bounded cube {x} radii wide: {mean:.0} points, c = {c:.3}");
+    }
+}
+
 fn main() -> ExitCode {
     let args = Args::parse();
     match args.what {
@@ -128,6 +140,14 @@ fn main() -> ExitCode {
             interior::<6>(&args);
             interior::<7>(&args);
             interior::<8>(&args);
+        }
+        What::Cube => {
+            // Annulus interior densities from `interior`.
+            cube::<4>(&args, 0.57002, &[8.0, 5.0]);
+            cube::<5>(&args, 0.59936, &[5.0, 3.5]);
+            cube::<6>(&args, 0.66856, &[4.0, 3.0]);
+            cube::<7>(&args, 0.78334, &[3.0]);
+            cube::<8>(&args, 0.96472, &[2.5]);
         }
         What::Axis => match args.dim {
             2 => axis::<2>(&args, [0.61538, 0.88088]),

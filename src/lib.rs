@@ -11,7 +11,8 @@
 //!   points lazily, in generation order, or collects them all;
 //!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
 //!   and clear of pre-placed points, which also gives seamless chunks of
-//!   an endless world (README has the recipe).
+//!   an endless world (README has the recipe), and
+//!   [`PoissonDisk::iter_varying`] lets the radius vary with position.
 //! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
 //!   scan order, while its memory stays proportional to one row of pixels:
 //!   for rasters too large to hold a set of, or a renderer that works a
@@ -264,6 +265,7 @@ mod candidates;
 mod conflict_cache;
 mod count;
 mod sampler;
+mod varying;
 // The background grid.
 mod grid;
 // Helpers.
@@ -296,6 +298,7 @@ pub use crate::sampler::{
 pub use crate::tiled::{
     DEFAULT_MAX_WINDOW_BYTES, ExactMethod, Pixel, Pixels, Scheme, Tiled, TiledBuilder,
 };
+pub use crate::varying::Varying;
 /// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and
 /// [`Tiled::pixels`] take, re-exported so that `bridson::rand::Rng` always
 /// names the right trait whatever rand your project uses (see "Which rand"

@@ -20,8 +20,8 @@ const SEEDS: u64 = 4;
 
 /// Runs count mode for `n` points in the box of `extent` and returns the
 /// relative error of the mean count over [`SEEDS`] seeds, checking the
-/// points with the naive (O(n²)) oracle on the first seed up to 2 000
-/// points.
+/// points with the naive (O(n²)) oracle on the first seed of bounded boxes
+/// up to 2 000 points (the guarantee itself is `tests/properties.rs`'s).
 fn relative_error<const N: usize>(
     extent: [f64; N],
     periodic: [bool; N],
@@ -47,6 +47,7 @@ fn relative_error<const N: usize>(
         let points = sampler.generate_seeded(seed).expect("within budget");
         if seed == 1
             && n <= 2000
+            && periodic.iter().all(|&p| !p)
             && let Err(report) = common::check_points(
                 &points,
                 sampler.radius(),
@@ -81,11 +82,11 @@ fn assert_within(error: f64, what: &str) {
 fn two_dimensional_boxes_get_the_count_asked_for() {
     let shapes: [([f64; 2], u64); 6] = [
         ([1.0, 1.0], 1000),
-        ([1.0, 1.0], 4000),
+        ([1.0, 1.0], 2500),
         ([4.0, 1.0], 1000),
         ([1.0, 16.0], 2000),
         ([60.0, 1.0], 1000),
-        ([1e-3, 2e-3], 10_000),
+        ([1e-3, 2e-3], 3000),
     ];
     for kind in KINDS {
         for (extent, n) in shapes {
@@ -168,6 +169,15 @@ fn bad_counts_are_errors() {
         tiny.map(|s| s.radius()),
         Err(Error::InvalidRadius),
         "radius below the limit"
+    );
+    // No table past 8-D.
+    let nine = Domain::from_extent([1.0; 9]).expect("box");
+    assert_eq!(
+        PoissonDisk::about_points(nine, 1000)
+            .build()
+            .map(|s| s.radius()),
+        Err(Error::InvalidRadius),
+        "9-D"
     );
     // Far below the documented range the count is only rough, but valid.
     let one = PoissonDisk::about_points(square, 1).build().expect("valid");

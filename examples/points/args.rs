@@ -49,7 +49,7 @@ Examples:
     name = "points",
     about = ABOUT,
     after_help = AFTER,
-    override_usage = "points --dim D (--radius R | --count N) [OPTIONS]\n       \
+    override_usage = "points --dim D (--radius R | --count N | --radius-range R0,R1) [OPTIONS]\n       \
                       points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]\n       \
                       points --pixels WxH --camera --spp N [--dims D] [--stream] [OPTIONS]",
     allow_negative_numbers = true,
@@ -60,8 +60,13 @@ pub(crate) struct Args {
     #[arg(long, value_name = "D", required_unless_present = "pixels")]
     dim: Option<usize>,
     /// Minimum distance between points
-    #[arg(long, value_name = "R", required_unless_present_any = ["pixels", "count"])]
+    #[arg(long, value_name = "R", required_unless_present_any = ["pixels", "count", "radius_range"])]
     radius: Option<f64>,
+    /// A radius varying linearly along axis 0, from R0 at lo to R1 at hi:
+    /// no two points p, q closer than max(r(p), r(q))
+    #[arg(long, value_name = "R0,R1", value_parser = common::list::<f64>,
+          conflicts_with_all = ["radius", "count", "pixels"])]
+    radius_range: Option<List<f64>>,
     /// About N points instead of a radius: the radius follows from the box
     /// (count mode; within 2 % from 1000 points in 2-D and 3-D)
     #[arg(long, value_name = "N", conflicts_with_all = ["radius", "pixels"])]
@@ -152,6 +157,8 @@ pub(crate) struct Config {
     pub(crate) radius: f64,
     /// `--count`: about this many points, instead of `radius`.
     pub(crate) count: Option<u64>,
+    /// `--radius-range R0,R1`: the radius along axis 0, from `lo` to `hi`.
+    pub(crate) radius_range: Option<(f64, f64)>,
     pub(crate) extent: Option<Vec<f64>>,
     pub(crate) lo: Option<Vec<f64>>,
     /// One flag per axis (`dim` of them).
@@ -264,6 +271,16 @@ impl Args {
                 )));
             }
         }
+        let radius_range = match self.radius_range.as_deref() {
+            None => None,
+            Some(&[r0, r1]) => Some((r0, r1)),
+            Some(other) => {
+                return Err(invalid(format!(
+                    "--radius-range needs two values, R0,R1, got {}",
+                    other.len()
+                )));
+            }
+        };
         let mut periodic = vec![self.periodic; dim];
         for &axis in self.periodic_axes.iter().flatten() {
             let Some(p) = periodic.get_mut(axis) else {
@@ -278,6 +295,7 @@ impl Args {
             dim,
             radius: self.radius.unwrap_or(f64::NAN),
             count: self.count,
+            radius_range,
             extent: self.extent,
             lo: self.lo,
             periodic,
@@ -326,6 +344,7 @@ mod tests {
             dim: 2,
             radius: 0.01,
             count: None,
+            radius_range: None,
             extent: Some(vec![1.0, 1.0]),
             lo: None,
             periodic: vec![false, false],
@@ -437,6 +456,20 @@ mod tests {
             "--pixels 4x4 --count 100",
             "--dim 2 --count -1",
             "--dim 2 --count 1.5",
+        ] {
+            assert_eq!(error(bad).exit_code(), 2, "{bad}: exit code");
+        }
+    }
+
+    #[test]
+    fn parses_a_radius_range() {
+        let c = config("--dim 2 --radius-range 0.01,0.04");
+        assert_eq!(c.radius_range, Some((0.01, 0.04)), "range");
+        for bad in [
+            "--dim 2 --radius-range 0.01",
+            "--dim 2 --radius-range 0.01,0.02,0.03",
+            "--dim 2 --radius-range 0.01,0.02 --radius 0.1",
+            "--dim 2 --radius-range 0.01,0.02 --count 100",
         ] {
             assert_eq!(error(bad).exit_code(), 2, "{bad}: exit code");
         }

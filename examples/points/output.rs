@@ -19,6 +19,9 @@ pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
 /// Builds the sampler from `config`, streams its points out and prints the
 /// summary.
 fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
+    if let Some(range) = config.radius_range {
+        return run_varying::<N>(config, range);
+    }
     let sampler = build::<N>(config).map_err(Failure::Usage)?;
     let (count, elapsed, layout, stopped) = match (config.format, &config.out) {
         (Format::None, _) => write_points(io::sink(), Format::None, &sampler, config.seed),
@@ -44,6 +47,46 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
     report(&summary(&sampler, count, elapsed, layout));
     // The points written are valid, but the set is incomplete: say why.
     stopped.map_or(Ok(()), |e| Err(Failure::Usage(e.to_string())))
+}
+
+/// `--radius-range R0,R1`: the radius grows (or falls) linearly along axis
+/// 0, from `R0` at `lo` to `R1` at `hi`.
+fn run_varying<const N: usize>(config: &Config, (r0, r1): (f64, f64)) -> Result<(), Failure> {
+    let config_max = Config {
+        radius: r0.max(r1),
+        ..config.clone()
+    };
+    let sampler = build::<N>(&config_max).map_err(Failure::Usage)?;
+    let (lo, extent) = (sampler.domain().lo()[0], sampler.domain().extent()[0]);
+    let field = move |p: &[f64; N]| r0 + (r1 - r0) * (p[0] - lo) / extent;
+    let mut points = sampler
+        .iter_varying(config.seed, r0.min(r1), field)
+        .map_err(|e| Failure::Usage(e.to_string()))?;
+    let domain = sampler.domain();
+    let header = (sampler.radius(), domain.lo(), domain.hi());
+    let start = Instant::now();
+    let written = match (config.format, &config.out) {
+        (Format::None, _) => write_stream(io::sink(), Format::None, header, points.by_ref()),
+        (format, Some(path)) => {
+            let file = File::create(path)
+                .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
+            write_stream(BufWriter::new(file), format, header, points.by_ref())
+        }
+        (format, None) => write_stream(
+            BufWriter::new(io::stdout().lock()),
+            format,
+            header,
+            points.by_ref(),
+        ),
+    };
+    let count = written.map_err(|e| Failure::Io(format!("writing the points: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    report(&format!(
+        "points: {count} in {seconds:.3} s, radius {r0} to {r1} along axis 0"
+    ));
+    points
+        .error()
+        .map_or(Ok(()), |e| Err(Failure::Usage(e.to_string())))
 }
 
 /// The sampler `config` describes, or the library's reason why not.
