@@ -691,7 +691,10 @@ impl<R: Rng> Pixels<R> {
                 continue;
             }
             let paper = self.scheme == Scheme::Paper;
-            if self.window.insert(p, (x, y), (paper || self.exact.is_some(), paper)) {
+            if self
+                .window
+                .insert(p, (x, y), (paper || self.exact.is_some(), paper))
+            {
                 if self.scheme != Scheme::Paper {
                     self.push(p);
                 }
