@@ -25,6 +25,7 @@
 
 mod check;
 mod peers;
+mod summary;
 #[path = "../../../benches/textbook/mod.rs"]
 mod textbook;
 
@@ -57,6 +58,10 @@ struct Args {
     /// Seed of every seeded run
     #[arg(long, default_value_t = 2026)]
     seed: u64,
+    /// Print the summary table (README's) of the JSON lines in these files
+    /// instead of running anything
+    #[arg(long, value_delimiter = ',')]
+    summarize: Vec<std::path::PathBuf>,
     /// Internal: run one job in this process and print its figures
     #[arg(long, hide = true, num_args = 5, value_names = ["PEER", "DIM", "PERIODIC", "RADIUS", "CHECK"])]
     child: Vec<String>,
@@ -105,7 +110,12 @@ fn main() -> ExitCode {
     if !args.child.is_empty() {
         return child(&args.child, args.seed);
     }
-    match parent(&args) {
+    let result = if args.summarize.is_empty() {
+        parent(&args)
+    } else {
+        summary::print(&args.summarize)
+    };
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("peers: {e}");
@@ -423,6 +433,7 @@ fn table(case: &Case, entries: &[Entry], load_start: &str, load_end: &str) -> St
         match (&entry.error, &entry.checked, entry.median_wall()) {
             (None, Ok(checked), Some(wall)) => {
                 let count = checked.outcome.count;
+                #[expect(clippy::cast_precision_loss, reason = "KiB, far below 2^52")]
                 let rss = median(
                     entry
                         .timed
