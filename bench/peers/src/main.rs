@@ -12,7 +12,7 @@
 //! (`check.rs`: points inside the box, no pair closer than `r`, exact `f64`,
 //! toroidal where periodic). A crate that takes a radius is given the radius
 //! that makes its point count match `bridson`'s within 1 % (equal count,
-//! hence a comparable amount of work; ρ is reported): up to four checked
+//! hence a comparable amount of work; ρ is reported): up to six checked
 //! runs, each rescaling `r` by `(n / target)^(1/N)`. A wrong crate gets
 //! "wrong: how" and no timing. Then the timed runs go round by round, every
 //! crate once per round, each in a fresh process (this binary, re-executed),
@@ -223,8 +223,9 @@ fn spawn(args: &Args, peer: Peer, case: &Case, radius: f64, check: bool) -> Resu
             .unwrap_or("no message")
             .to_owned();
         return Err(match status.code() {
-            Some(3) if check => format!("wrong: {why}"),
-            Some(3) => format!("error: {why}"),
+            // The child's message says "wrong: …" (the check) or
+            // "refused: …" (the crate would not run the job).
+            Some(3) => why,
             Some(c) => format!("failed (exit {c}): {why}"),
             None => format!("failed (signal): {why}"),
         });
@@ -282,11 +283,16 @@ fn median(mut xs: Vec<f64>) -> Option<f64> {
     })
 }
 
+/// Checked runs allowed for fitting a crate's radius to the count. Counts
+/// move in steps of a point or so per seed, so a few tries can straddle a
+/// 1 % window in 8-D (2 200 points).
+const CALIBRATION_RUNS: usize = 6;
+
 /// Checked runs at radii fitted to `target` points (within 1 %).
 fn calibrate(args: &Args, peer: Peer, case: &Case, target: usize) -> (f64, Result<Run, String>) {
     let mut radius = case.radius;
     let mut last = Err("not run".to_owned());
-    for _ in 0..4 {
+    for _ in 0..CALIBRATION_RUNS {
         last = spawn(args, peer, case, radius, true);
         let Ok(run) = &last else { break };
         #[expect(clippy::cast_precision_loss, reason = "counts, ratio only")]
@@ -301,7 +307,7 @@ fn calibrate(args: &Args, peer: Peer, case: &Case, target: usize) -> (f64, Resul
     if let Ok(run) = &last {
         let count = run.outcome.count;
         last = Err(format!(
-            "count not within 1 % of {target} after 4 radii (last r = {radius}: {count})"
+            "count not within 1 % of {target} after {CALIBRATION_RUNS} radii (last r = {radius}: {count})"
         ));
     }
     (radius, last)

@@ -46,7 +46,7 @@ fn render(cases: &[String], lines: &[Value]) -> String {
             .rev()
             .find(|l| l["case"] == case && l["crate"] == name)
     };
-    let mut out = String::from("| case | points | load |");
+    let mut out = String::from("| case | points | load (1 min) |");
     let mut rule = String::from("|---|--:|---|");
     for peer in ALL {
         let _ = write!(out, " {} |", peer.name());
@@ -88,7 +88,15 @@ fn cell(line: &Value, bridson_wall: Option<f64>, case: &str, notes: &mut Vec<Str
         if let Some(rest) = error.strip_prefix("too slow: stopped after ") {
             return format!("> {}", rest.trim_end_matches(" s").to_owned() + " s");
         }
-        let kind = error.split(':').next().unwrap_or("failed");
+        let kind = if error.starts_with("wrong") {
+            "wrong"
+        } else if error.starts_with("count not within") {
+            "count off"
+        } else if error.starts_with("refused") {
+            "refused"
+        } else {
+            "failed"
+        };
         notes.push(format!("- {name}, {case}: {error}"));
         return format!("{kind} ({})", notes.len());
     }
