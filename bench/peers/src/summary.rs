@@ -104,9 +104,18 @@ fn cell(line: &Value, bridson_wall: Option<f64>, case: &str, notes: &mut Vec<Str
     else {
         return "?".into();
     };
-    let rate = points / wall / 1e6;
+    let rate = significant(points / wall / 1e6);
     match bridson_wall {
-        Some(b) if name != "bridson" => format!("{rate:.3} ({:.1}×)", wall / b),
-        _ => format!("{rate:.3}"),
+        Some(b) if name != "bridson" => format!("{rate} ({:.1}×)", wall / b),
+        _ => rate,
     }
+}
+
+/// Three significant digits (down to 10⁻⁶), so slow rates stay readable.
+fn significant(x: f64) -> String {
+    let mut decimals = 2;
+    while decimals < 6 && x.abs() < 10f64.powi(2 - decimals) * 0.9995 {
+        decimals += 1;
+    }
+    format!("{x:.*}", usize::try_from(decimals).unwrap_or(6))
 }
