@@ -12,7 +12,7 @@
 //! (`check.rs`: points inside the box, no pair closer than `r`, exact `f64`,
 //! toroidal where periodic). A crate that takes a radius is given the radius
 //! that makes its point count match `bridson`'s within 1 % (equal count,
-//! hence a comparable amount of work; ρ is reported): up to four checked
+//! hence a comparable amount of work; ρ is reported): up to six checked
 //! runs, each rescaling `r` by `(n / target)^(1/N)`. A wrong crate gets
 //! "wrong: how" and no timing. Then the timed runs go round by round, every
 //! crate once per round, each in a fresh process (this binary, re-executed),
@@ -25,6 +25,7 @@
 
 mod check;
 mod peers;
+mod summary;
 #[path = "../../../benches/textbook/mod.rs"]
 mod textbook;
 
@@ -57,6 +58,10 @@ struct Args {
     /// Seed of every seeded run
     #[arg(long, default_value_t = 2026)]
     seed: u64,
+    /// Print the summary table (README's) of the JSON lines in these files
+    /// instead of running anything
+    #[arg(long, value_delimiter = ',')]
+    summarize: Vec<std::path::PathBuf>,
     /// Internal: run one job in this process and print its figures
     #[arg(long, hide = true, num_args = 5, value_names = ["PEER", "DIM", "PERIODIC", "RADIUS", "CHECK"])]
     child: Vec<String>,
@@ -105,7 +110,12 @@ fn main() -> ExitCode {
     if !args.child.is_empty() {
         return child(&args.child, args.seed);
     }
-    match parent(&args) {
+    let result = if args.summarize.is_empty() {
+        parent(&args)
+    } else {
+        summary::print(&args.summarize)
+    };
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("peers: {e}");
@@ -213,8 +223,9 @@ fn spawn(args: &Args, peer: Peer, case: &Case, radius: f64, check: bool) -> Resu
             .unwrap_or("no message")
             .to_owned();
         return Err(match status.code() {
-            Some(3) if check => format!("wrong: {why}"),
-            Some(3) => format!("error: {why}"),
+            // The child's message says "wrong: …" (the check) or
+            // "refused: …" (the crate would not run the job).
+            Some(3) => why,
             Some(c) => format!("failed (exit {c}): {why}"),
             None => format!("failed (signal): {why}"),
         });
@@ -272,11 +283,16 @@ fn median(mut xs: Vec<f64>) -> Option<f64> {
     })
 }
 
+/// Checked runs allowed for fitting a crate's radius to the count. Counts
+/// move in steps of a point or so per seed, so a few tries can straddle a
+/// 1 % window in 8-D (2 200 points).
+const CALIBRATION_RUNS: usize = 6;
+
 /// Checked runs at radii fitted to `target` points (within 1 %).
 fn calibrate(args: &Args, peer: Peer, case: &Case, target: usize) -> (f64, Result<Run, String>) {
     let mut radius = case.radius;
     let mut last = Err("not run".to_owned());
-    for _ in 0..4 {
+    for _ in 0..CALIBRATION_RUNS {
         last = spawn(args, peer, case, radius, true);
         let Ok(run) = &last else { break };
         #[expect(clippy::cast_precision_loss, reason = "counts, ratio only")]
@@ -291,7 +307,7 @@ fn calibrate(args: &Args, peer: Peer, case: &Case, target: usize) -> (f64, Resul
     if let Ok(run) = &last {
         let count = run.outcome.count;
         last = Err(format!(
-            "count not within 1 % of {target} after 4 radii (last r = {radius}: {count})"
+            "count not within 1 % of {target} after {CALIBRATION_RUNS} radii (last r = {radius}: {count})"
         ));
     }
     (radius, last)
@@ -423,6 +439,7 @@ fn table(case: &Case, entries: &[Entry], load_start: &str, load_end: &str) -> St
         match (&entry.error, &entry.checked, entry.median_wall()) {
             (None, Ok(checked), Some(wall)) => {
                 let count = checked.outcome.count;
+                #[expect(clippy::cast_precision_loss, reason = "KiB, far below 2^52")]
                 let rss = median(
                     entry
                         .timed

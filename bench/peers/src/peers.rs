@@ -123,7 +123,7 @@ pub(crate) struct Job {
 /// The crate refused the job, or (with `check`) its output is wrong.
 pub(crate) fn run(job: &Job) -> Result<Outcome, String> {
     job.peer.supports(job.dim, job.periodic)?;
-    match job.dim {
+    let outcome = match job.dim {
         2 => run_n::<2>(job),
         3 => run_n::<3>(job),
         4 => run_n::<4>(job),
@@ -132,7 +132,14 @@ pub(crate) fn run(job: &Job) -> Result<Outcome, String> {
         7 => run_n::<7>(job),
         8 => run_n::<8>(job),
         d => Err(format!("no case in {d}-D")),
-    }
+    };
+    outcome.map_err(|e| {
+        if e.starts_with("wrong: ") {
+            e
+        } else {
+            format!("refused: {e}")
+        }
+    })
 }
 
 /// Ends a run: counts, or converts and checks.
@@ -155,7 +162,8 @@ fn done<const N: usize, P>(
             .iter()
             .map(|p| core::array::from_fn(|a| coord(p, a)))
             .collect();
-        let passed = check(&converted, [1.0; N], job.periodic, radius)?;
+        let passed =
+            check(&converted, [1.0; N], job.periodic, radius).map_err(|e| format!("wrong: {e}"))?;
         outcome.min_distance = Some(passed.min_distance);
     }
     Ok(outcome)
