@@ -462,9 +462,11 @@ pub struct Pixels<R> {
 const SWEEP_BAND: f64 = 4.0;
 
 impl<R: Rng> Pixels<R> {
-    /// Makes the next pixel and swaps its points into `points` (whose old
-    /// contents are dropped), reusing its allocation; returns the pixel's
-    /// `(x, y)`, or `None` at the end of the image.
+    /// Makes the next pixel and puts its points into `points` (whose old
+    /// contents are dropped), reusing its allocation: the sweep copies them
+    /// from the row it gathered, the paper's scheme and exact mode swap in
+    /// the pixel's list. Returns the pixel's `(x, y)`, or `None` at the end
+    /// of the image.
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
         let (x, y) = self.advance()?;
         points.clear();
@@ -629,7 +631,11 @@ impl<R: Rng> Pixels<R> {
         };
         let radius = self.reach / 2.0;
         let ahead = self.candidates.reads_ahead();
-        let near_origin = ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
+        // Below `2²⁸·r` from the origin, a candidate is its parent plus its
+        // offset to within far less than the cache's and the interior
+        // test's margins (`ConflictCache::block_relative`).
+        let small = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
+        let near_origin = ahead && small;
         let mut cache = ConflictCache::<2, 8>::new(*parent, radius);
         self.window.seed(parent, 8, |q| cache.push(q));
         // Far from the rectangle's sides (the usual case), no candidate can
@@ -638,7 +644,7 @@ impl<R: Rng> Pixels<R> {
         // `2r·(1 + 10⁻⁷)` of the parent, and below `2²⁸·r` from the origin
         // the sum's rounding is far below the slack.
         let m = self.reach * (1.0 + 1e-6);
-        let interior = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN)
+        let interior = small
             && parent[0] - x0 >= m
             && x1 - parent[0] > m
             && parent[1] - y0 >= m

@@ -151,6 +151,9 @@ pub(crate) struct Window {
     /// `row[starts[x]..starts[x + 1]]`.
     row: Vec<[f64; 2]>,
     starts: Vec<usize>,
+    /// Where [`Self::gather_row`] puts each pixel's next point (kept
+    /// between rows for its allocation).
+    cursor: Vec<usize>,
     /// The lowest pixel row still held (rows above it were dropped).
     top: usize,
     radius: f64,
@@ -179,6 +182,7 @@ impl Window {
             grid,
             row: Vec::new(),
             starts: Vec::new(),
+            cursor: Vec::new(),
             top: 0,
             radius,
         }
@@ -257,8 +261,8 @@ impl Window {
         }
         self.row.clear();
         self.row.resize(total, [f64::NAN; 2]);
-        let mut next: Vec<usize> = self.starts.clone();
-        let (row, grid) = (&mut self.row, &self.grid);
+        self.cursor.clone_from(&self.starts);
+        let (row, grid, next) = (&mut self.row, &self.grid, &mut self.cursor);
         grid.for_each_in_row(y, |p| {
             #[expect(
                 clippy::cast_possible_truncation,
