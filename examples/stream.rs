@@ -22,8 +22,25 @@
 //! cargo run --release --example stream -- --pixels 160x160 --exact 4 --chart docs/images/exact-tradeoff.png
 //! ```
 //!
+//! Speed is timed in passes of their own that only take the points, as a
+//! renderer would (the statistics' minimum-distance check grows with the
+//! points per pixel, so it runs in one more, untimed, pass). `--rounds R`
+//! times every program R times, alternating them round by round: the
+//! streams, with `--exact` the plain sweep at exact mode's radius (unless
+//! `--no-sweep`; `--method both` times both methods), and the batch sampler
+//! on the same area (unless `--no-batch`); then the medians, and each
+//! stream's points/s against the batch sampler's (the median of the
+//! rounds' own ratios, in thread CPU time and on the wall clock):
+//!
+//! ```text
+//! cargo run --release --example stream -- --pixels 4096x256 --per-pixel 4 --scheme sweep --rounds 5
+//! cargo run --release --example stream -- --pixels 256x256 --exact 16 --method both --rounds 3 --no-batch
+//! ```
+//!
 //! `--progress ROWS` prints, every ROWS rows, the points so far, the rate and
-//! the current RSS, so a long run shows its memory staying flat.
+//! the current RSS, so a long run shows its memory staying flat; it times
+//! the statistics pass itself (no separate timed rounds), so its rate
+//! includes the checks.
 //!
 //! Peak RSS (`VmHWM`, Linux) covers the whole run; with `--scheme` and
 //! `--no-batch` a run measures one configuration only.
@@ -41,7 +58,7 @@ mod line_chart;
 mod tradeoff;
 
 use crate::common::{peak_rss_mib, status_mib};
-use bridson::{Domain, ExactMethod, PoissonDisk, Scheme, Tiled, relative_radius};
+use bridson::{Domain, ExactMethod, PoissonDisk, Scheme, Tiled, TiledBuilder, relative_radius};
 use clap::{Parser, ValueEnum};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -69,10 +86,17 @@ struct Args {
     /// Skip the batch sampler's run on the same area
     #[arg(long)]
     no_batch: bool,
+    /// With --exact: skip the plain sweep's run at exact mode's radius
+    #[arg(long)]
+    no_sweep: bool,
+    /// Timed runs of each program, alternating program by program, round
+    /// by round (the statistics come from one more, untimed, run)
+    #[arg(long, value_name = "R", default_value_t = 1)]
+    rounds: u32,
     /// Exactly N points in every pixel
     #[arg(long, value_name = "N")]
     exact: Option<u32>,
-    /// Exact mode: how excess points are dropped
+    /// Exact mode: how excess points are dropped (both: each in turn)
     #[arg(long, value_name = "METHOD", value_enum, default_value_t = MethodArg::Eliminate)]
     method: MethodArg,
     /// Exact mode: the sweep's points per pixel over N
@@ -103,13 +127,15 @@ fn triple(text: &str) -> Result<[f64; 3], String> {
 enum MethodArg {
     Eliminate,
     Random,
+    Both,
 }
 
-impl From<MethodArg> for ExactMethod {
-    fn from(m: MethodArg) -> Self {
-        match m {
-            MethodArg::Eliminate => Self::Eliminate,
-            MethodArg::Random => Self::Random,
+impl MethodArg {
+    fn list(self) -> Vec<ExactMethod> {
+        match self {
+            Self::Eliminate => vec![ExactMethod::Eliminate],
+            Self::Random => vec![ExactMethod::Random],
+            Self::Both => vec![ExactMethod::Eliminate, ExactMethod::Random],
         }
     }
 }
@@ -295,6 +321,205 @@ impl Stats {
     }
 }
 
+/// One program timed by `--rounds`: a stream, or the batch sampler on the
+/// same area.
+enum Program {
+    Stream {
+        label: String,
+        tiled: Tiled,
+        exact: bool,
+    },
+    Batch {
+        sampler: PoissonDisk<2>,
+    },
+}
+
+impl Program {
+    fn label(&self) -> &str {
+        match self {
+            Self::Stream { label, .. } => label,
+            Self::Batch { .. } => "batch",
+        }
+    }
+
+    /// One timed run: points made, wall seconds, and thread CPU seconds
+    /// (the wall clock where the system does not tell).
+    fn time(&self, seed: u64) -> (u64, f64, f64) {
+        match self {
+            Self::Stream { tiled, .. } => timed_pass(tiled, seed),
+            Self::Batch { sampler } => {
+                let start = Instant::now();
+                let cpu = common::thread_cpu_seconds();
+                let n = std::hint::black_box(sampler.iter_seeded(seed).count());
+                let wall = start.elapsed().as_secs_f64();
+                let cpu = match (cpu, common::thread_cpu_seconds()) {
+                    (Some(a), Some(b)) => b - a,
+                    _ => wall,
+                };
+                (n as u64, wall, cpu)
+            }
+        }
+    }
+}
+
+/// Streams `tiled` once as a renderer would take it, doing nothing with
+/// the points but counting them: points, wall and thread CPU seconds (the
+/// wall clock where the system does not tell). The statistics are
+/// gathered in a pass of their own, so their cost (the minimum-distance
+/// check grows with the points per pixel) stays out of the rate.
+pub(crate) fn timed_pass(tiled: &Tiled, seed: u64) -> (u64, f64, f64) {
+    let mut buf = Vec::new();
+    let mut points = 0u64;
+    let start = Instant::now();
+    let cpu = common::thread_cpu_seconds();
+    let mut stream = tiled.pixels_seeded(seed);
+    while stream.next_into(&mut buf).is_some() {
+        points += buf.len() as u64;
+        std::hint::black_box(&buf);
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = match (cpu, common::thread_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => wall,
+    };
+    (points, wall, cpu)
+}
+
+/// The median of `values` (the upper one of an even count).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// The builder for one streamed configuration of the command line.
+fn builder_for(args: &Args, scheme: Scheme, method: Option<ExactMethod>) -> TiledBuilder {
+    let (width, height) = args.size;
+    let builder = Tiled::builder(width, height).scheme(scheme);
+    match (args.exact, method, args.radius) {
+        (Some(n), Some(method), _) => {
+            let b = builder
+                .exact(n)
+                .exact_method(method)
+                .exact_oversample(args.oversample);
+            match args.bias {
+                Some(beta) => b.exact_edge_bias(beta),
+                None => b,
+            }
+        }
+        (_, _, Some(r)) => builder.radius(r),
+        (_, _, None) => builder.per_pixel(args.per_pixel),
+    }
+}
+
+/// The programs the command line asks for, streams first.
+fn programs(args: &Args) -> Result<Vec<Program>, String> {
+    let (width, height) = args.size;
+    let mut list = Vec::new();
+    if args.exact.is_some() {
+        for method in args.method.list() {
+            let tiled = builder_for(args, Scheme::Sweep, Some(method))
+                .build()
+                .map_err(|e| e.to_string())?;
+            let label = format!("exact {}", format!("{method:?}").to_lowercase());
+            list.push(Program::Stream {
+                label,
+                tiled,
+                exact: true,
+            });
+        }
+    } else {
+        for scheme in args.scheme.list() {
+            let tiled = builder_for(args, scheme, None)
+                .build()
+                .map_err(|e| e.to_string())?;
+            let label = format!("{scheme:?}").to_lowercase();
+            list.push(Program::Stream {
+                label,
+                tiled,
+                exact: false,
+            });
+        }
+    }
+    let radius = match list.first() {
+        Some(Program::Stream { tiled, .. }) => tiled.radius(),
+        _ => return Ok(list),
+    };
+    // Exact mode against the plain sweep that makes its points.
+    if args.exact.is_some() && !args.no_sweep {
+        let tiled = Tiled::builder(width, height)
+            .radius(radius)
+            .build()
+            .map_err(|e| e.to_string())?;
+        let label = "sweep at the same r".to_owned();
+        list.push(Program::Stream {
+            label,
+            tiled,
+            exact: false,
+        });
+    }
+    if !args.no_batch {
+        let domain = Domain::from_extent([f64::from(width), f64::from(height)]);
+        let sampler = domain
+            .and_then(|d| PoissonDisk::new(d, radius))
+            .map_err(|e| format!("batch on the same area: {e}"))?;
+        list.push(Program::Batch { sampler });
+    }
+    Ok(list)
+}
+
+/// `--rounds`: every program once per round, in turn, then the medians,
+/// and each program's speed against the batch sampler's where it ran
+/// (the median over rounds of the round's own ratio).
+fn time_rounds(list: &[Program], rounds: u32, seed: u64) {
+    let mut figures: Vec<Vec<(u64, f64, f64)>> = vec![Vec::new(); list.len()];
+    for round in 1..=rounds {
+        let mut line = format!("round {round}:");
+        for (program, runs) in list.iter().zip(&mut figures) {
+            let (n, wall, cpu) = program.time(seed);
+            #[expect(clippy::cast_precision_loss, reason = "statistics")]
+            let rate = n as f64 / cpu / 1e6;
+            line.push_str(&format!(
+                " {} {cpu:.3} s CPU ({rate:.3} M/s), {wall:.3} s wall;",
+                program.label()
+            ));
+            runs.push((n, wall, cpu));
+        }
+        println!("{line}");
+    }
+    let batch = list.iter().position(|p| matches!(p, Program::Batch { .. }));
+    for (program, runs) in list.iter().zip(&figures) {
+        #[expect(clippy::cast_precision_loss, reason = "statistics")]
+        let rate = |pick: fn(&(u64, f64, f64)) -> f64| {
+            median(runs.iter().map(|r| r.0 as f64 / pick(r) / 1e6).collect())
+        };
+        let (cpu, wall) = (rate(|r| r.2), rate(|r| r.1));
+        let mut line = format!(
+            "median of {rounds}: {}: {} points, {cpu:.3} M/s CPU, {wall:.3} M/s wall",
+            program.label(),
+            runs.first().map_or(0, |r| r.0)
+        );
+        if let Some(b) = batch.and_then(|b| figures.get(b))
+            && !matches!(program, Program::Batch { .. })
+        {
+            #[expect(clippy::cast_precision_loss, reason = "statistics")]
+            let ratio = |pick: fn(&(u64, f64, f64)) -> f64| {
+                let pairs = runs.iter().zip(b);
+                median(
+                    pairs
+                        .map(|(s, t)| (s.0 as f64 / pick(s)) / (t.0 as f64 / pick(t)))
+                        .collect(),
+                )
+            };
+            line.push_str(&format!(
+                "; {:.0} % of batch's points/s in CPU time, {:.0} % on the wall clock",
+                100.0 * ratio(|r| r.2),
+                100.0 * ratio(|r| r.1)
+            ));
+        }
+        println!("{line}");
+    }
+}
+
 fn main() -> ExitCode {
     let args = Args::parse();
     let (width, height) = args.size;
@@ -307,31 +532,28 @@ fn main() -> ExitCode {
             }
         };
     }
+    let list = match programs(&args) {
+        Ok(list) => list,
+        Err(e) => {
+            eprintln!("stream: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    // With --progress the one statistics pass is the timed run (the
+    // billion-point run would not afford two).
+    if args.progress.is_none() {
+        time_rounds(&list, args.rounds.max(1), args.seed);
+    }
     let pixels = u64::from(width) * u64::from(height);
     let area = f64::from(width) * f64::from(height);
-    let mut stream_rate = None;
-    for scheme in args.scheme.list() {
-        let builder = Tiled::builder(width, height).scheme(scheme);
-        let builder = match (args.exact, args.radius) {
-            (Some(n), _) => {
-                let b = builder
-                    .exact(n)
-                    .exact_method(args.method.into())
-                    .exact_oversample(args.oversample);
-                match args.bias {
-                    Some(beta) => b.exact_edge_bias(beta),
-                    None => b,
-                }
-            }
-            (None, Some(r)) => builder.radius(r),
-            (None, None) => builder.per_pixel(args.per_pixel),
-        };
-        let tiled = match builder.build() {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("stream: {e}");
-                return ExitCode::from(2);
-            }
+    for program in &list {
+        let Program::Stream {
+            label,
+            tiled,
+            exact,
+        } = program
+        else {
+            continue;
         };
         let mut stats = Stats::new(width);
         let mut buf = Vec::new();
@@ -358,11 +580,15 @@ fn main() -> ExitCode {
         let seconds = start.elapsed().as_secs_f64();
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let rate = stats.points as f64 / seconds;
-        // On a shared machine the thread's CPU time is the steadier cost.
-        if let (Some(a), Some(b)) = (cpu_start, common::thread_cpu_seconds()) {
+        if args.progress.is_some()
+            && let (Some(a), Some(b)) = (cpu_start, common::thread_cpu_seconds())
+        {
             #[expect(clippy::cast_precision_loss, reason = "statistics")]
             let cpu_rate = stats.points as f64 / (b - a) / 1e6;
-            println!("  CPU time {:.3} s ({cpu_rate:.3} M points/s)", b - a);
+            println!(
+                "  CPU time {:.3} s ({cpu_rate:.3} M points/s, with the statistics)",
+                b - a
+            );
         }
         // ρ of the radius r (natural mode: the guaranteed minimum), and of
         // the set's measured minimum distance (what exact mode offers).
@@ -385,50 +611,29 @@ fn main() -> ExitCode {
             (false, true) => "holds for pairs in adjacent pixels (r >= 1: others unchecked)",
             (false, false) => "VIOLATED",
         };
-        if args.exact.is_none() {
+        if !exact {
             println!(
                 "  minimum distance {:.6} against r = {:.6}: the guarantee {verdict}",
                 stats.min_d2.sqrt(),
                 tiled.radius()
             );
-        }
-        if args.exact.is_some() {
+        } else {
             println!("  exact mode: {} top-up darts", stream.top_ups());
         }
+        let mode = if args.progress.is_some() {
+            format!(" in {seconds:.3} s ({:.3} M/s)", rate / 1e6)
+        } else {
+            String::new()
+        };
         println!(
-            "{scheme:?}: {}x{} pixels, r = {:.5}, {} points in {seconds:.3} s ({:.3} M/s), rho {rho:.4}, window {:.1} MiB",
+            "{label}: {}x{} pixels, r = {:.5}, {} points{mode}, rho {rho:.4}, window {:.1} MiB",
             width,
             height,
             tiled.radius(),
             stats.points,
-            rate / 1e6,
             tiled.window_bytes() as f64 / 1048576.0
         );
         stats.report(pixels);
-        if scheme == Scheme::Sweep {
-            stream_rate = Some((tiled.radius(), rate));
-        }
-    }
-    if !args.no_batch
-        && let Some((radius, rate)) = stream_rate
-    {
-        let domain = Domain::from_extent([f64::from(width), f64::from(height)]);
-        let sampler = domain.and_then(|d| PoissonDisk::new(d, radius));
-        match sampler {
-            Ok(s) => {
-                let start = Instant::now();
-                let n = s.iter_seeded(args.seed).count();
-                let seconds = start.elapsed().as_secs_f64();
-                #[expect(clippy::cast_precision_loss, reason = "statistics")]
-                let batch = n as f64 / seconds;
-                println!(
-                    "batch on the same area: {n} points in {seconds:.3} s ({:.3} M/s); sweep streaming at {:.0} % of batch",
-                    batch / 1e6,
-                    100.0 * rate / batch
-                );
-            }
-            Err(e) => println!("batch on the same area: {e}"),
-        }
     }
     if let Some(rss) = peak_rss_mib() {
         println!("peak RSS {rss:.1} MiB");

@@ -6,13 +6,11 @@
 //! points/s at the same radius, both measured in this run in CPU time, the
 //! sweep first at each `s`).
 
-use crate::Stats;
 use crate::canvas::{Canvas, Rgb, WHITE};
-use crate::common::thread_cpu_seconds;
 use crate::line_chart::{LineChart, Reference, Series};
+use crate::{Stats, timed_pass};
 use bridson::{ExactMethod, Tiled, TiledBuilder};
 use std::path::Path;
-use std::time::Instant;
 
 /// The oversamplings measured.
 const OVERSAMPLINGS: [f64; 7] = [1.0, 1.1, 1.25, 1.4, 1.6, 2.0, 3.0];
@@ -53,23 +51,18 @@ const VARIANTS: [Variant; 4] = [
     },
 ];
 
-/// Streams `builder`'s pixels once: the statistics and the seconds taken,
-/// in CPU time of this thread where the system tells it (the machine may be
-/// shared), else on the wall clock.
+/// Streams `builder`'s pixels twice: timed, doing nothing with the points
+/// (`timed_pass`: CPU time of this thread where the system tells it, the
+/// machine may be shared, else the wall clock), then for the statistics.
 fn run(builder: TiledBuilder, width: u32, seed: u64) -> Result<(Tiled, Stats, f64), String> {
     let tiled = builder.build().map_err(|e| e.to_string())?;
+    let (_, _, seconds) = timed_pass(&tiled, seed);
     let mut stats = Stats::new(width);
     let mut buf = Vec::new();
-    let start = Instant::now();
-    let cpu = thread_cpu_seconds();
     let mut stream = tiled.pixels_seeded(seed);
     while let Some((x, y)) = stream.next_into(&mut buf) {
         stats.add(x, y, &buf);
     }
-    let seconds = match (cpu, thread_cpu_seconds()) {
-        (Some(a), Some(b)) => b - a,
-        _ => start.elapsed().as_secs_f64(),
-    };
     Ok((tiled, stats, seconds))
 }
 
