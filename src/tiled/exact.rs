@@ -194,8 +194,9 @@ pub(crate) struct Exact {
     method: ExactMethod,
     /// β along x and y, of [`Self::edge_factor`].
     bias: [f64; 3],
-    /// `2rₑ`: the reach of the elimination weight.
+    /// `2rₑ`: the reach of the elimination weight, and its inverse.
     reach: f64,
+    inv_reach: f64,
     /// The sweep's radius squared: what darts must keep from every point.
     radius_squared: f64,
     /// Cells per pixel side of the band's local grid: cells are about half
@@ -219,9 +220,10 @@ pub(crate) struct Exact {
     cell_start: Vec<usize>,
     cell_of: Vec<usize>,
     cell_items: Vec<u32>,
-    /// Elimination: weights, and each point's neighbours with their weight
-    /// terms.
+    /// Elimination: weights, edge factors ([`Self::edge_factor`]), and
+    /// each point's neighbours with their weight terms.
     weight: Vec<f64>,
+    factor: Vec<f64>,
     link_start: Vec<usize>,
     links: Vec<(u32, f64)>,
     heap: BinaryHeap<Entry>,
@@ -266,6 +268,7 @@ impl Exact {
             method,
             bias,
             reach,
+            inv_reach: 1.0 / reach,
             radius_squared: radius * radius,
             cells,
             cell_reach,
@@ -279,6 +282,7 @@ impl Exact {
             cell_of: Vec::new(),
             cell_items: Vec::new(),
             weight: Vec::new(),
+            factor: Vec::new(),
             link_start: Vec::new(),
             links: Vec::new(),
             heap: BinaryHeap::new(),
@@ -305,7 +309,7 @@ impl Exact {
 
     fn weight_of(&self, d2: f64) -> f64 {
         if d2 < self.reach * self.reach {
-            (1.0 - d2.sqrt() / self.reach).powi(ALPHA)
+            (1.0 - d2.sqrt() * self.inv_reach).powi(ALPHA)
         } else {
             0.0
         }
@@ -716,21 +720,35 @@ impl Exact {
     }
 
     /// Step 3, [`ExactMethod::Eliminate`]: weighted sample elimination of
-    /// the band down to `n` per pixel.
+    /// the band until every pixel of row `y` is down to `n`: from then on
+    /// no point of row `y` can go, so the rest of row `y + 1`'s thinning,
+    /// which is thrown away, is not done.
     fn eliminate(&mut self, window: &Window, y: usize, width: usize, band_rows: usize) {
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
         let top = y as f64;
         let total = self.points.len();
         self.weight.clear();
         self.weight.resize(total, 0.0);
+        self.factor.clear();
+        self.factor.resize(total, 1.0);
         self.link_start.clear();
         self.links.clear();
         let reach2 = self.reach * self.reach;
+        let mut entries = core::mem::take(&mut self.heap).into_vec();
+        entries.clear();
         for i in 0..total {
             self.link_start.push(self.links.len());
-            let (Some(&p), Some(true)) = (self.points.get(i), self.alive.get(i).copied()) else {
+            let (Some(&p), Some(true), Some(&b)) = (
+                self.points.get(i),
+                self.alive.get(i).copied(),
+                self.pixel.get(i),
+            ) else {
                 continue;
             };
+            let over = self.count.get(b as usize).is_some_and(|&c| c > self.n);
+            if !over {
+                continue;
+            }
             let mut w = 0.0;
             let mut links = core::mem::take(&mut self.links);
             self.near(&p, y, width, band_rows, |j| {
@@ -748,46 +766,51 @@ impl Exact {
             });
             self.links = links;
             if p[1] - top < self.reach {
-                let b = self.pixel.get(i).copied().unwrap_or(0) as usize;
                 w += self
-                    .final_above(window, y, b % width, width)
+                    .final_above(window, y, b as usize % width, width)
                     .map(|q| self.weight_of(distance_squared(&p, q)))
                     .sum::<f64>();
             }
-            if let Some(slot) = self.weight.get_mut(i) {
+            let f = self.edge_factor(i);
+            if let (Some(slot), Some(g)) = (self.weight.get_mut(i), self.factor.get_mut(i)) {
                 *slot = w;
+                *g = f;
             }
+            #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
+            entries.push(Entry(w * f, i as u32));
         }
         self.link_start.push(self.links.len());
-        self.heap.clear();
-        for i in 0..total {
-            let over = self
-                .pixel
-                .get(i)
-                .and_then(|&b| self.count.get(b as usize))
-                .is_some_and(|&c| c > self.n);
-            if over
-                && self.alive.get(i) == Some(&true)
-                && let Some(&w) = self.weight.get(i)
-            {
-                #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
-                self.heap.push(Entry(w * self.edge_factor(i), i as u32));
-            }
-        }
-        while let Some(Entry(w, i)) = self.heap.pop() {
+        self.heap = BinaryHeap::from(entries);
+        // Pixels of row `y` still over `n`: the loop ends when none is.
+        let mut left = self
+            .count
+            .get(..width)
+            .unwrap_or(&[])
+            .iter()
+            .filter(|&&c| c > self.n)
+            .count();
+        while left > 0
+            && let Some(Entry(w, i)) = self.heap.pop()
+        {
             let i = i as usize;
-            let (Some(&is_alive), Some(&current), Some(&b)) =
-                (self.alive.get(i), self.weight.get(i), self.pixel.get(i))
-            else {
+            let (Some(&is_alive), Some(&current), Some(&f), Some(&b)) = (
+                self.alive.get(i),
+                self.weight.get(i),
+                self.factor.get(i),
+                self.pixel.get(i),
+            ) else {
                 continue;
             };
             if !is_alive
-                || w != current * self.edge_factor(i)
+                || w != current * f
                 || self.count.get(b as usize).is_none_or(|&c| c <= self.n)
             {
                 continue;
             }
             self.kill(i);
+            if (b as usize) < width && self.count.get(b as usize) == Some(&self.n) {
+                left -= 1;
+            }
             let (Some(&a), Some(&z)) = (self.link_start.get(i), self.link_start.get(i + 1)) else {
                 continue;
             };
@@ -800,16 +823,14 @@ impl Exact {
                     && let Some(wj) = self.weight.get_mut(j)
                 {
                     *wj -= t;
+                    let wj = *wj;
                     let still_over = self
                         .pixel
                         .get(j)
                         .and_then(|&c| self.count.get(c as usize))
                         .is_some_and(|&c| c > self.n);
-                    if still_over {
-                        let f = self.edge_factor(j);
-                        if let Some(&wj) = self.weight.get(j) {
-                            self.heap.push(Entry(wj * f, j32));
-                        }
+                    if still_over && let Some(&f) = self.factor.get(j) {
+                        self.heap.push(Entry(wj * f, j32));
                     }
                 }
             }
@@ -870,16 +891,10 @@ impl Exact {
             let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
                 continue;
             };
-            let mine = (a..z).chain(
-                self.darts
-                    .iter()
-                    .map(|&i| i as usize)
-                    .filter(|&i| self.pixel.get(i).is_some_and(|&b| b as usize == x)),
-            );
             if let Some(slot) = window.slot_mut(x, y) {
                 slot.points.clear();
                 slot.kept.clear();
-                for i in mine {
+                for i in a..z {
                     if self.alive.get(i) == Some(&true)
                         && let Some(&p) = self.points.get(i)
                     {
@@ -887,6 +902,16 @@ impl Exact {
                         slot.kept.push(p);
                     }
                 }
+            }
+        }
+        for &i in &self.darts {
+            let i = i as usize;
+            if self.alive.get(i) == Some(&true)
+                && let (Some(&p), Some(&x)) = (self.points.get(i), self.pixel.get(i))
+                && let Some(slot) = window.slot_mut(x as usize, y)
+            {
+                slot.points.push(p);
+                slot.kept.push(p);
             }
         }
     }
