@@ -90,7 +90,8 @@ struct Args {
     #[arg(long)]
     no_sweep: bool,
     /// Timed runs of each program, alternating program by program, round
-    /// by round (the statistics come from one more, untimed, run)
+    /// by round (the statistics come from one more, untimed, run; 0: the
+    /// statistics only)
     #[arg(long, value_name = "R", default_value_t = 1)]
     rounds: u32,
     /// Exactly N points in every pixel
@@ -541,8 +542,8 @@ fn main() -> ExitCode {
     };
     // With --progress the one statistics pass is the timed run (the
     // billion-point run would not afford two).
-    if args.progress.is_none() {
-        time_rounds(&list, args.rounds.max(1), args.seed);
+    if args.progress.is_none() && args.rounds > 0 {
+        time_rounds(&list, args.rounds, args.seed);
     }
     let pixels = u64::from(width) * u64::from(height);
     let area = f64::from(width) * f64::from(height);

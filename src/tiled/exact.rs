@@ -846,6 +846,12 @@ impl Exact {
             };
             // Darts only go to short pixels, which end at n: an excess
             // pixel's live points are all among its gathered ones.
+            if self.count.get(x).is_some_and(|&c| c > self.n) && self.bias != [0.0; 3] {
+                let mut factors = core::mem::take(&mut self.factor);
+                factors.clear();
+                factors.extend((a..z).map(|i| self.edge_factor(i)));
+                self.factor = factors;
+            }
             while let Some(&c) = self.count.get(x)
                 && c > self.n
             {
@@ -861,16 +867,15 @@ impl Exact {
                         }
                     }
                 } else {
-                    let total: f64 = (a..z)
-                        .filter(|&i| self.alive.get(i) == Some(&true))
-                        .map(|i| self.edge_factor(i))
-                        .sum();
+                    let live = |i: usize| self.alive.get(i) == Some(&true);
+                    let factor = |i: usize| self.factor.get(i - a).copied().unwrap_or(1.0);
+                    let total: f64 = (a..z).filter(|&i| live(i)).map(factor).sum();
                     let mut t = unit(rng) * total;
                     let mut last = None;
                     for i in a..z {
-                        if self.alive.get(i) == Some(&true) {
+                        if live(i) {
                             last = Some(i);
-                            t -= self.edge_factor(i);
+                            t -= factor(i);
                             if t < 0.0 {
                                 break;
                             }

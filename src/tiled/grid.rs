@@ -51,9 +51,9 @@ pub(crate) struct RollingGrid {
     /// The whole cell's stencil without the centre, in address order: the
     /// seed's cells.
     seed_offsets: Vec<isize>,
-    /// The offset of every cache line of the block a pick's candidates
-    /// search (the parent's cell, plus `2r` for the candidates, plus the
-    /// reach): what [`Self::prefetch`] asks for.
+    /// The offset of every cache line of the block around a pick's parent
+    /// that its candidates search first (`r` from the parent's cell, plus
+    /// the reach): what [`Self::prefetch`] asks for.
     block_lines: Vec<isize>,
 }
 
@@ -260,10 +260,11 @@ impl RollingGrid {
         }
     }
 
-    /// Asks for every cell a pick around `p` will read: the sweep picks
+    /// Asks for the cells a pick around `p` reads first: the sweep picks
     /// its next parent anywhere along the front, whose width can put the
-    /// window's live rows past the nearest caches, and its candidates,
-    /// up to `2r` away, search cells up to `2r` plus the reach from it.
+    /// window's live rows past the nearest caches; its candidates, up to
+    /// `2r` away, search cells up to `2r` plus the reach from it, of which
+    /// the inner block (`r` plus the reach) is fetched.
     #[inline(always)]
     pub(crate) fn prefetch(&self, p: &[f64; 2]) {
         let (cx, cy, _) = self.locate(p);
@@ -331,15 +332,18 @@ impl RollingGrid {
 }
 
 /// The offsets of the cache lines (64 bytes, 4 cells) covering the square
-/// of cells a pick searches: `2r/side + reach` cells on each side of the
-/// parent's.
+/// of cells a pick's first candidates search: `r/side + reach` cells on
+/// each side of the parent's, about the inner half of the `2r` its
+/// candidates reach. Asking for the whole `2r` square (44 lines a pick)
+/// cost more in instructions than it saved in misses
+/// (`docs/performance-journal.md`).
 fn block_lines(radius: f64, side: f64, reach: usize, columns: usize) -> Vec<isize> {
     const CELLS_PER_LINE: usize = 64 / size_of::<[f64; 2]>();
-    let span = (2.0 * radius / side).ceil();
+    let span = (radius / side).floor();
     #[expect(
         clippy::cast_possible_truncation,
         clippy::cast_sign_loss,
-        reason = "a few cells: 2r / side = 2√2"
+        reason = "a few cells: r / side = √2"
     )]
     let half = (span as usize).saturating_add(reach).min(columns / 2);
     let (Ok(half), Ok(columns)) = (isize::try_from(half), isize::try_from(columns)) else {
