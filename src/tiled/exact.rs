@@ -107,7 +107,11 @@ pub enum ExactMethod {
 /// (512², 256², 128² pixels for `n` = 4, 16, 64; the harmonic is linear in
 /// each): β from `0,0,0` and `0.2,0.2,0`, then γ from `βx,βy,0` and
 /// `βx,βy,0.1` (for elimination at `n = 4`, refined from two seeds at two
-/// more settings, the response being less linear). Linear in `n` between those, the `n = 4` values below (at
+/// more settings, the response being less linear). `βx` for elimination
+/// at `n = 64` and `βx, βy` for random dropping at `n = 16` were refined at
+/// 512² (1.7·10⁷ and 4.2·10⁶ points), where the harmonic left by the
+/// 10⁶-point calibration (0.1 %) still showed as power 4–7: two seeds at
+/// the old value and one more setting each. Linear in `n` between those, the `n = 4` values below (at
 /// `n = 1` no β helps: a quarter of the pixels are short there), the
 /// `n = 64` values above. `y` differs from `x` because rows are settled in
 /// order and columns together: darts take room from the row below (γ < 0),
@@ -119,11 +123,11 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
         ExactMethod::Eliminate => [
             (4.0, [0.151, 0.124, -0.019]),
             (16.0, [0.067, 0.066, 0.016]),
-            (64.0, [0.0, 0.061, 0.023]),
+            (64.0, [0.010, 0.061, 0.023]),
         ],
         ExactMethod::Random => [
             (4.0, [0.236, 0.193, -0.036]),
-            (16.0, [0.023, 0.018, 0.0]),
+            (16.0, [0.030, 0.030, 0.0]),
             (64.0, [0.0, 0.0, 0.0]),
         ],
     };
@@ -332,7 +336,15 @@ impl Exact {
         };
         self.gather(window, y, width, band_rows);
         self.kill_conflicts(window, y, width);
-        self.index_cells(y, width, band_rows);
+        // The local grid serves the darts and elimination; a row with no
+        // short pixel, thinned at random, needs none (most rows at n = 64).
+        let short_row = self
+            .count
+            .get(..width)
+            .is_some_and(|c| c.iter().any(|&c| c < self.n));
+        if short_row {
+            self.index_cells(y, width, band_rows);
+        }
         let mut top_ups = 0;
         // A dart may, as a last resort, take a point from a pixel of the
         // row already mended, which then gets mended again on the next
@@ -352,7 +364,8 @@ impl Exact {
         }
         match self.method {
             ExactMethod::Eliminate => {
-                if !self.darts.is_empty() {
+                // Again if darts came in (a short row always gets some).
+                if !short_row || !self.darts.is_empty() {
                     self.index_cells(y, width, band_rows);
                 }
                 self.eliminate(window, y, width, band_rows);
