@@ -395,10 +395,15 @@ pub(crate) fn timed_pass(tiled: &Tiled, seed: u64) -> (u64, f64, f64) {
     (points, wall, cpu)
 }
 
-/// The median of `values` (the upper one of an even count).
+/// The median of `values` (the mean of the middle two of an even count).
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
-    values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
+    let half = values.len() / 2;
+    match (values.get(half.wrapping_sub(1)), values.get(half)) {
+        (Some(a), Some(b)) if values.len().is_multiple_of(2) => f64::midpoint(*a, *b),
+        (_, Some(b)) => *b,
+        _ => f64::NAN,
+    }
 }
 
 /// The builder for one streamed configuration of the command line.
