@@ -233,6 +233,13 @@ pub(crate) struct Exact {
     heap: BinaryHeap<Entry>,
     /// Darts placed in this band (indices into `points`).
     darts: Vec<u32>,
+    /// The same darts by pixel column, for [`Self::blockers`]: a dart
+    /// closer than `r` to a point of pixel `x` lies in column `x - 1`,
+    /// `x` or `x + 1` (darts are all in row `y`, and `r < 1`: at most
+    /// `sqrt(0.88 / (s·n))` with `s, n >= 1`), so a dart is checked
+    /// against a few darts, not against every dart of a row as wide as the
+    /// image.
+    dart_columns: Vec<Vec<u32>>,
 }
 
 impl Exact {
@@ -291,6 +298,7 @@ impl Exact {
             links: Vec::new(),
             heap: BinaryHeap::new(),
             darts: Vec::new(),
+            dart_columns: Vec::new(),
         }
     }
 
@@ -378,10 +386,20 @@ impl Exact {
 
     /// Copies the band's points, pixel by pixel.
     fn gather(&mut self, window: &Window, y: usize, width: usize, band_rows: usize) {
+        for &i in &self.darts {
+            if let Some(list) = self
+                .pixel
+                .get(i as usize)
+                .and_then(|&x| self.dart_columns.get_mut(x as usize))
+            {
+                list.clear();
+            }
+        }
+        self.darts.clear();
+        self.dart_columns.resize_with(width, Vec::new);
         self.points.clear();
         self.pixel.clear();
         self.start.clear();
-        self.darts.clear();
         for row in 0..band_rows {
             for x in 0..width {
                 let b = row * width + x;
@@ -649,6 +667,10 @@ impl Exact {
     fn push_dart(&mut self, d: [f64; 2], x: usize) {
         #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
         self.darts.push(self.points.len() as u32);
+        #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
+        if let Some(list) = self.dart_columns.get_mut(x) {
+            list.push(self.points.len() as u32);
+        }
         self.points.push(d);
         #[expect(clippy::cast_possible_truncation, reason = "x < width < 2^32")]
         self.pixel.push(x as u32);
@@ -672,7 +694,11 @@ impl Exact {
         take: Take,
     ) -> Option<Blockers> {
         let r2 = self.radius_squared;
-        for &i in &self.darts {
+        let columns = self
+            .dart_columns
+            .get(x.saturating_sub(1)..=(x + 1).min(width - 1))
+            .unwrap_or(&[]);
+        for &i in columns.iter().flatten() {
             if self
                 .points
                 .get(i as usize)
