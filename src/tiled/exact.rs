@@ -37,7 +37,8 @@
 //!      pixel on a hexagonal lattice; the neighbours are the band's points
 //!      and the final points above. Row `y + 1`'s result is thrown away and
 //!      made again with row `y` final, so every row is thinned with settled
-//!      rows on both sides.
+//!      rows on both sides (and the elimination stops as soon as row `y`
+//!      is down to `n`: what follows could only touch row `y + 1`).
 //!    - [`ExactMethod::Random`]: the excess points of each pixel are picked
 //!      uniformly at random, blind to where they lie.
 //!
