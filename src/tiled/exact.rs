@@ -930,20 +930,21 @@ impl Exact {
     }
 
     /// Row `y`'s live points, in generation order (darts last), become its
-    /// points and final points.
+    /// final points, which are also what the pixels emit.
     fn store(&self, window: &mut Window, y: usize, width: usize) {
         for x in 0..width {
             let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
                 continue;
             };
             if let Some(slot) = window.slot_mut(x, y) {
+                // The sweep's list is spent; the pixel is emitted from
+                // `kept`.
                 slot.points.clear();
                 slot.kept.clear();
                 for i in a..z {
                     if self.alive.get(i) == Some(&true)
                         && let Some(&p) = self.points.get(i)
                     {
-                        slot.points.push(p);
                         slot.kept.push(p);
                     }
                 }
@@ -955,7 +956,6 @@ impl Exact {
                 && let (Some(&p), Some(&x)) = (self.points.get(i), self.pixel.get(i))
                 && let Some(slot) = window.slot_mut(x as usize, y)
             {
-                slot.points.push(p);
                 slot.kept.push(p);
             }
         }

@@ -464,13 +464,16 @@ const SWEEP_BAND: f64 = 4.0;
 impl<R: Rng> Pixels<R> {
     /// Makes the next pixel and puts its points into `points` (whose old
     /// contents are dropped), reusing its allocation: the sweep copies them
-    /// from the row it gathered, the paper's scheme and exact mode swap in
-    /// the pixel's list. Returns the pixel's `(x, y)`, or `None` at the end
-    /// of the image.
+    /// from the row it gathered, exact mode from the pixel's final points
+    /// (kept for the rows below), the paper's scheme swaps in the pixel's
+    /// list. Returns the pixel's `(x, y)`, or `None` at the end of the
+    /// image.
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
         let (x, y) = self.advance()?;
         points.clear();
-        if self.lists() {
+        if self.exact.is_some() {
+            points.extend_from_slice(&self.window.slot(x, y).kept);
+        } else if self.lists() {
             if let Some(slot) = self.window.slot_mut(x, y) {
                 core::mem::swap(points, &mut slot.points);
             }
@@ -754,7 +757,9 @@ impl<R: Rng> Iterator for Pixels<R> {
     fn next(&mut self) -> Option<Pixel> {
         let (x, y) = self.advance()?;
         // A copy of exactly the pixel's size; a slot keeps its allocation.
-        let points = if self.lists() {
+        let points = if self.exact.is_some() {
+            self.window.slot(x, y).kept.clone()
+        } else if self.lists() {
             self.window
                 .slot_mut(x, y)
                 .map(|slot| {

@@ -20,11 +20,13 @@ use crate::grid::rounding_margin;
 /// mode).
 #[derive(Debug, Default, Clone)]
 pub(crate) struct Slot {
-    /// Points not yet handed out (emptied when the pixel is emitted).
+    /// The paper's scheme: points not yet handed out (emptied when the
+    /// pixel is emitted). Exact mode: the sweep's points, until the row is
+    /// settled.
     pub(crate) points: Vec<[f64; 2]>,
     pub(crate) active: Vec<[f64; 2]>,
-    /// Exact mode: the pixel's final points, kept after emission for the
-    /// next rows' elimination weights.
+    /// Exact mode: the pixel's final points, emitted and kept for the next
+    /// rows' checks and elimination weights.
     pub(crate) kept: Vec<[f64; 2]>,
 }
 
