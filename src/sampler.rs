@@ -621,10 +621,11 @@ impl<const N: usize> PoissonDisk<N> {
 /// A first point whose `k` candidates all fail (they can only leave the
 /// box, or the region) is given more picks, up to `64·k` candidates in
 /// all, rather than end the run at one point: from 5-D up a point near a
-/// corner of the box loses most of its candidates. A set can still end
-/// tiny when its first few points all sit near a corner: in an 8-D unit
-/// cube at `r = 0.4`, one seed in 300 (seed 230) stops at 2 points, where
-/// the others make 2 100 to 2 300. Raising `k` makes that rarer.
+/// corner of the box loses most of its candidates (in an 8-D unit cube at
+/// `r = 0.4`, 15 of seeds 1–300 would otherwise end at one point). A set
+/// can still end tiny when its first few points all sit near a corner:
+/// there, seed 230 stops at 2 points, where the other 299 seeds make 2 110
+/// to 2 280.
 ///
 /// `G` is the region new points must lie in ([`Everywhere`] unless the run
 /// came from [`PoissonDisk::iter_with`]).
@@ -768,10 +769,10 @@ impl<const N: usize, R, G> Iter<N, R, G> {
     /// another pick around it (then the point is active again): up to
     /// [`FIRST_POINT_PICKS`] picks in all. A first point's throws fail only
     /// by leaving the box (or the region), and from 5-D up a point near a
-    /// corner loses most of them: in an 8-D unit cube at `r = 0.4`, seed 1
-    /// lost all `k = 30`, and the run ended at one point where seeds 2 and 3
-    /// made about 2 200. A run with a second point never comes here, so its
-    /// points are as before.
+    /// corner loses most of them: in an 8-D unit cube at `r = 0.4`, 15 of
+    /// seeds 1–300 lose all `k = 30`, and would end at one point where the
+    /// others make about 2 200. A run with a second point never comes here,
+    /// so its points are as before.
     fn again_around_first(&mut self) -> bool {
         let Some((first, left)) = &mut self.first_alone else {
             return false;
