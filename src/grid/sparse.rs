@@ -304,16 +304,17 @@ impl<const N: usize> Sparse<N> {
         Some(n)
     }
 
-    /// Lists each axis's steps around `p` (see [`Self::axis_steps`]) into
-    /// `steps` and `lens`; `None` if an axis has more than the plan allows.
+    /// Lists each axis's steps around `p`, in `cell`, (see
+    /// [`Self::axis_steps`]) into `steps` and `lens`; `None` if an axis has
+    /// more than the plan allows.
     #[inline(always)]
     fn steps(
         &self,
         p: &[f64; N],
+        cell: &[i64; N],
         steps: &mut [[Step; MAX_STEPS]; N],
         lens: &mut [usize; N],
     ) -> Option<()> {
-        let cell = self.cell_of(p);
         let axes = cell.iter().zip(p).zip(&self.lo);
         for (axis, ((out, len), ((&c, &x), &lo))) in
             steps.iter_mut().zip(lens.iter_mut()).zip(axes).enumerate()
@@ -401,6 +402,31 @@ impl<const N: usize> Sparse<N> {
         }
     }
 
+    /// A stored point of `cell` closer than `r` to `p`, if any.
+    #[inline(always)]
+    fn conflict_in(&self, cell: &[i64; N], p: &[f64; N]) -> Option<[f64; N]> {
+        let close =
+            |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < self.radius_squared;
+        match &self.store {
+            Store::Array {
+                heads,
+                entries,
+                stride,
+            } => {
+                let mut at = heads.get(linear(cell, stride)).copied().unwrap_or(END);
+                while at != END {
+                    let entry = entries.get(at as usize)?;
+                    if close(&entry.point) {
+                        return Some(entry.point);
+                    }
+                    at = entry.next;
+                }
+                None
+            }
+            Store::Table { map, .. } => map.get(cell)?.iter().find(|q| close(q)).copied(),
+        }
+    }
+
     /// The first stored point closer than `r` to `p` among the cells the
     /// steps reach.
     #[inline(always)]
@@ -473,11 +499,19 @@ fn nearest_last<const N: usize>(steps: &[[Step; MAX_STEPS]; N], lens: &[usize; N
 
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
-        // More steps than the plan allows cannot happen; were it to, the
-        // candidate is refused: the set stays valid.
+        // The candidate's own cell first: it holds the conflict in a third
+        // of the searches that find one in 5-D and 6-D (a fifth in 8-D),
+        // and those skip listing the axes' steps. The walk visits it again
+        // when it holds none, which costs less than a list of steps.
+        let cell = self.cell_of(p);
+        if let Some(q) = self.conflict_in(&cell, p) {
+            return Some(q);
+        }
         let mut steps = [[Step::default(); MAX_STEPS]; N];
         let mut lens = [0usize; N];
-        if self.steps(p, &mut steps, &mut lens).is_none() {
+        // More steps than the plan allows cannot happen; were it to, the
+        // candidate is refused: the set stays valid.
+        if self.steps(p, &cell, &mut steps, &mut lens).is_none() {
             return Some(*p);
         }
         self.search(&steps, &lens, p)
