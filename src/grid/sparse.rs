@@ -413,15 +413,8 @@ impl<const N: usize> Sparse<N> {
                 entries,
                 stride,
             } => {
-                let mut at = heads.get(linear(cell, stride)).copied().unwrap_or(END);
-                while at != END {
-                    let entry = entries.get(at as usize)?;
-                    if close(&entry.point) {
-                        return Some(entry.point);
-                    }
-                    at = entry.next;
-                }
-                None
+                let head = heads.get(linear(cell, stride)).copied().unwrap_or(END);
+                first_close(entries, head, close)
             }
             Store::Table { map, .. } => map.get(cell)?.iter().find(|q| close(q)).copied(),
         }
@@ -442,15 +435,7 @@ impl<const N: usize> Sparse<N> {
         match &self.store {
             Store::Array { heads, entries, .. } => {
                 Self::walk(steps, lens, &order, r2, |_, index| {
-                    let mut at = heads.get(index).copied().unwrap_or(END);
-                    while at != END {
-                        let entry = entries.get(at as usize)?;
-                        if close(&entry.point) {
-                            return Some(entry.point);
-                        }
-                        at = entry.next;
-                    }
-                    None
+                    first_close(entries, heads.get(index).copied().unwrap_or(END), close)
                 })
             }
             Store::Table { map, .. } => Self::walk(steps, lens, &order, r2, |key, _| {
@@ -458,6 +443,24 @@ impl<const N: usize> Sparse<N> {
             }),
         }
     }
+}
+
+/// The first point of the list that starts at entry `at` for which
+/// `close` holds.
+#[inline(always)]
+fn first_close<const N: usize>(
+    entries: &[Entry<N>],
+    mut at: u32,
+    close: impl Fn(&[f64; N]) -> bool,
+) -> Option<[f64; N]> {
+    while at != END {
+        let entry = entries.get(at as usize)?;
+        if close(&entry.point) {
+            return Some(entry.point);
+        }
+        at = entry.next;
+    }
+    None
 }
 
 /// The order in which a search walks the axes: the axis whose nearest
