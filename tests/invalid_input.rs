@@ -315,18 +315,25 @@ impl rand::TryRng for CountingRng {
 }
 
 /// `k` is any `u32` in `1..=MAX_ATTEMPTS`, and a point retires after
-/// exactly `k` failed candidates: in a 1 × 0.001 strip at `r = 0.999`, a
-/// first point away from the ends has every candidate land outside (the
-/// box is just long enough that the one-point shortcut does not apply). The
-/// 2-D annulus makes 2 draws for the first point, 1 to pick it, 1 to draw
-/// the next pick ahead and 1 per candidate, so the stream ends after `k + 4`
-/// draws, plus fewer than 8 offsets drawn ahead and not used (the sampler
-/// draws 8 at a time).
+/// exactly `k` failed candidates, a first point left alone after 64 picks
+/// of `k`: in a 1 × 0.001 strip at `r = 0.999`, a first point away from
+/// the ends has every candidate land outside (the box is just long enough
+/// that the one-point shortcut does not apply). The 2-D annulus makes 2
+/// draws for the first point, 1 per candidate (8 at a time, so none left
+/// over after `64·k`), and 1 or 2 a pick (the next pick drawn ahead, and
+/// this one drawn again if the one drawn ahead is past the list), so the
+/// stream ends after `64·k + 2` draws plus 64 to 128.
 #[test]
 fn large_attempts_cost_exactly_k_candidates_per_retired_point() {
     let strip = Domain::from_extent([1.0, 0.001]).expect("box");
-    for k in [1, 30, MAX_ATTEMPTS] {
-        for layout in LAYOUTS {
+    // At k = MAX_ATTEMPTS, 64 picks are 4 M candidates: one layout only
+    // (3 s in a debug build).
+    for (k, layouts) in [
+        (1, &LAYOUTS[..]),
+        (30, &LAYOUTS[..]),
+        (MAX_ATTEMPTS, &LAYOUTS[..1]),
+    ] {
+        for &layout in layouts {
             let s = PoissonDisk2::builder(strip, 0.999)
                 .attempts(k)
                 .layout(layout)
@@ -339,13 +346,27 @@ fn large_attempts_cost_exactly_k_candidates_per_retired_point() {
                 (0.002..0.998).contains(&points[0][0]),
                 "seed 4 must put the first point away from the ends: {points:?}"
             );
-            let needed = u64::from(k) + 4;
+            let needed = 64 * u64::from(k) + 2;
             assert!(
-                (needed..needed + 8).contains(&rng.draws),
+                (needed + 64..=needed + 128).contains(&rng.draws),
                 "k = {k}, {layout:?}: {} draws until the stream ends",
                 rng.draws
             );
         }
+    }
+}
+
+/// From 5-D up most throws around a point near a corner leave the box: in
+/// an 8-D unit cube at `r = 0.4`, all 30 around seed 1's first point did,
+/// and the run ended at one point. A first point left alone gets more
+/// picks; the set it then grows is full and valid.
+#[test]
+fn a_first_point_near_a_corner_does_not_end_the_run() {
+    let cube = Domain::from_extent([1.0; 8]).expect("box");
+    let s = PoissonDisk::new(cube, 0.4).expect("valid");
+    for seed in [1, 2] {
+        let n = assert_valid(&s, seed, usize::MAX);
+        assert!(n > 2000, "8-D r = 0.4, seed {seed}: {n} points");
     }
 }
 

@@ -18,7 +18,7 @@
 use super::{NeighbourGrid, SparsePlan};
 use crate::budget::{bytes_of, reserve_one, vec_bytes};
 use crate::domain::Domain;
-use crate::vector::{periodic_distance_squared, zip_map};
+use crate::vector::periodic_distance_squared;
 use core::hash::{BuildHasherDefault, Hasher};
 use smallvec::SmallVec;
 use std::collections::HashMap;
@@ -82,12 +82,14 @@ struct Entry<const N: usize> {
 /// axis searched whole.
 const MAX_STEPS: usize = 5;
 
-/// One cell on one axis that a search visits: its index there and the
-/// square of a lower bound on the distance to it along that axis.
+/// One cell on one axis that a search visits: the square of a lower bound
+/// on the distance to it along that axis, its index there, and that index
+/// times the axis's stride in the array store (0 with the hash table).
 #[derive(Clone, Copy, Debug, Default)]
 struct Step {
-    key: i64,
     gap2: f64,
+    key: i64,
+    offset: usize,
 }
 
 /// The end of a list: entry 0 is a sentinel, never a point.
@@ -212,9 +214,8 @@ impl<const N: usize> Sparse<N> {
     /// The cells on `axis` that can hold a point closer than `r` to a
     /// candidate at `t` (from `lo`) in cell `c`, each with the square of a
     /// lower bound on the distance to it along that axis, into `out`,
-    /// nearest first;
-    /// returns how many, or `None` if more than [`MAX_STEPS`]
-    /// (which the plan rules out: see there).
+    /// nearest first; returns how many, or `None` if more than
+    /// [`MAX_STEPS`] (which the plan rules out: see there).
     #[inline(always)]
     fn axis_steps(
         &self,
@@ -230,6 +231,10 @@ impl<const N: usize> Sparse<N> {
             self.periodic.get(axis),
         ) else {
             return Some(0);
+        };
+        let stride = match &self.store {
+            Store::Array { stride, .. } => stride.get(axis).copied().unwrap_or(0),
+            Store::Table { .. } => 0,
         };
         // Distance along the axis from `t` to cell `c + d`, less the
         // rounding margin: a lower bound for any point filed there.
@@ -248,7 +253,13 @@ impl<const N: usize> Sparse<N> {
             if gap2 >= self.radius_squared {
                 return Some(());
             }
-            *out.get_mut(n)? = Step { key, gap2 };
+            #[expect(
+                clippy::cast_sign_loss,
+                clippy::cast_possible_truncation,
+                reason = "keys are in 0..counts, whose product fits usize in the array store"
+            )]
+            let offset = key as usize * stride;
+            *out.get_mut(n)? = Step { gap2, key, offset };
             n += 1;
             Some(())
         };
@@ -260,60 +271,140 @@ impl<const N: usize> Sparse<N> {
                 push(k, gap(d).min(gap(d - m)).min(gap(d + m)))?;
             }
         } else {
-            // 0, -1, 1, -2, 2, …: the own cell first, for an early exit.
-            for j in 0..=2 * reach {
-                let d = if j % 2 == 1 { -(j + 1) / 2 } else { j / 2 };
-                let k = c + d;
-                if periodic {
-                    push(k.rem_euclid(m), gap(d))?;
-                } else if (0..m).contains(&k) {
-                    push(k, gap(d))?;
+            // The own cell first, for an early exit, then -1, 1, -2, 2, …
+            push(c, 0.0)?;
+            for j in 1..=reach {
+                for d in [-j, j] {
+                    let k = c + d;
+                    if periodic {
+                        push(k.rem_euclid(m), gap(d))?;
+                    } else if (0..m).contains(&k) {
+                        push(k, gap(d))?;
+                    }
                 }
             }
         }
         // Nearest first: a conflict is found sooner (in a small torus every
-        // cell holds close points), and a walk can stop at the first step
-        // too far.
-        out.get_mut(..n)?
-            .sort_unstable_by(|a, b| a.gap2.total_cmp(&b.gap2));
+        // cell holds close points), and a walk stops at the first step too
+        // far. An insertion sort: at most five steps, nearly in order.
+        let steps = out.get_mut(..n)?;
+        for i in 1..steps.len() {
+            let mut j = i;
+            while j > 0 {
+                let (Some(a), Some(b)) = (steps.get(j - 1), steps.get(j)) else {
+                    break;
+                };
+                if a.gap2 <= b.gap2 {
+                    break;
+                }
+                steps.swap(j - 1, j);
+                j -= 1;
+            }
+        }
         Some(n)
     }
 
-    /// Depth-first over the axes, through each axis's steps nearest first,
-    /// while the bound summed so far (`partial`) stays below `r²`; at the
-    /// last axis, the cell's points.
-    fn walk(
+    /// Lists each axis's steps around `p`, in `cell`, (see
+    /// [`Self::axis_steps`]) into `steps` and `lens`; `None` if an axis has
+    /// more than the plan allows.
+    #[inline(always)]
+    fn steps(
         &self,
-        axis: usize,
+        p: &[f64; N],
+        cell: &[i64; N],
+        steps: &mut [[Step; MAX_STEPS]; N],
+        lens: &mut [usize; N],
+    ) -> Option<()> {
+        let axes = cell.iter().zip(p).zip(&self.lo);
+        for (axis, ((out, len), ((&c, &x), &lo))) in
+            steps.iter_mut().zip(lens.iter_mut()).zip(axes).enumerate()
+        {
+            *len = self.axis_steps(axis, c, x - lo, out)?;
+        }
+        Some(())
+    }
+
+    /// Depth-first over the axes in `order`, through each axis's steps
+    /// nearest first, while the bound summed over the axes so far stays
+    /// below `limit_squared`; calls `visit` with each cell reached (its key
+    /// and, for the array store, its index), stopping at the first `Some`.
+    /// Iterative, and the last axis a plain loop: a search visits a dozen
+    /// cells, and a call per cell cost more than the cells.
+    #[inline(always)]
+    fn walk<T>(
         steps: &[[Step; MAX_STEPS]; N],
         lens: &[usize; N],
-        key: &mut [i64; N],
-        partial: f64,
-        p: &[f64; N],
-    ) -> Option<[f64; N]> {
-        let (Some(axis_steps), Some(&n)) = (steps.get(axis), lens.get(axis)) else {
-            return self.conflict_in(key, p);
-        };
-        for step in axis_steps.iter().take(n) {
-            let bound = partial + step.gap2;
-            if bound >= self.radius_squared {
-                break;
+        order: &[usize; N],
+        limit_squared: f64,
+        mut visit: impl FnMut(&[i64; N], usize) -> Option<T>,
+    ) -> Option<T> {
+        let mut key = [0i64; N];
+        // Per depth: the step being tried, and the bound and index offset
+        // summed over the axes before it.
+        let mut at = [0usize; N];
+        let mut partial = [0.0f64; N];
+        let mut offset = [0usize; N];
+        let last = N.checked_sub(1)?;
+        let mut depth = 0;
+        loop {
+            // The cells along the last axis, from what the axes before
+            // summed (`depth == last` only when `N == 1`).
+            let (bound, base) = if depth == last {
+                (0.0, 0)
+            } else {
+                let axis = *order.get(depth)?;
+                let i = *at.get(depth)?;
+                let s = steps
+                    .get(axis)?
+                    .get(i)
+                    .filter(|_| i < *lens.get(axis).unwrap_or(&0))
+                    .copied();
+                let p = *partial.get(depth)?;
+                match s {
+                    Some(s) if p + s.gap2 < limit_squared => {
+                        *key.get_mut(axis)? = s.key;
+                        let o = *offset.get(depth)? + s.offset;
+                        if depth + 1 < last {
+                            depth += 1;
+                            *at.get_mut(depth)? = 0;
+                            *partial.get_mut(depth)? = p + s.gap2;
+                            *offset.get_mut(depth)? = o;
+                            continue;
+                        }
+                        (p + s.gap2, o)
+                    }
+                    _ => {
+                        // This axis is done: back to the one before.
+                        if depth == 0 {
+                            return None;
+                        }
+                        depth -= 1;
+                        *at.get_mut(depth)? += 1;
+                        continue;
+                    }
+                }
+            };
+            let axis = *order.get(last)?;
+            let n = *lens.get(axis)?;
+            for s in steps.get(axis)?.iter().take(n) {
+                if bound + s.gap2 >= limit_squared {
+                    break;
+                }
+                *key.get_mut(axis)? = s.key;
+                if let Some(found) = visit(&key, base + s.offset) {
+                    return Some(found);
+                }
             }
-            if let Some(k) = key.get_mut(axis) {
-                *k = step.key;
+            if depth == last {
+                return None;
             }
-            if let Some(q) = self.walk(axis + 1, steps, lens, key, bound, p) {
-                return Some(q);
-            }
+            *at.get_mut(depth)? += 1;
         }
-        None
     }
-}
 
-impl<const N: usize> Sparse<N> {
-    /// A point of cell `key` closer than `r` to `p`, if any.
+    /// A stored point of `cell` closer than `r` to `p`, if any.
     #[inline(always)]
-    fn conflict_in(&self, key: &[i64; N], p: &[f64; N]) -> Option<[f64; N]> {
+    fn conflict_in(&self, cell: &[i64; N], p: &[f64; N]) -> Option<[f64; N]> {
         let close =
             |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < self.radius_squared;
         match &self.store {
@@ -322,42 +413,111 @@ impl<const N: usize> Sparse<N> {
                 entries,
                 stride,
             } => {
-                let mut at = heads.get(linear(key, stride)).copied().unwrap_or(END);
-                while at != END {
-                    let entry = entries.get(at as usize)?;
-                    if close(&entry.point) {
-                        return Some(entry.point);
-                    }
-                    at = entry.next;
-                }
-                None
+                let head = heads.get(linear(cell, stride)).copied().unwrap_or(END);
+                first_close(entries, head, close)
             }
-            Store::Table { map, .. } => map.get(key)?.iter().find(|q| close(q)).copied(),
+            Store::Table { map, .. } => map.get(cell)?.iter().find(|q| close(q)).copied(),
+        }
+    }
+
+    /// The first stored point closer than `r` to `p` among the cells the
+    /// steps reach.
+    #[inline(always)]
+    fn search(
+        &self,
+        steps: &[[Step; MAX_STEPS]; N],
+        lens: &[usize; N],
+        p: &[f64; N],
+    ) -> Option<[f64; N]> {
+        let r2 = self.radius_squared;
+        let close = |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < r2;
+        let order = nearest_last(steps, lens);
+        match &self.store {
+            Store::Array { heads, entries, .. } => {
+                Self::walk(steps, lens, &order, r2, |_, index| {
+                    first_close(entries, heads.get(index).copied().unwrap_or(END), close)
+                })
+            }
+            Store::Table { map, .. } => Self::walk(steps, lens, &order, r2, |key, _| {
+                map.get(key)?.iter().find(|q| close(q)).copied()
+            }),
         }
     }
 }
 
+/// The first point of the list that starts at entry `at` for which
+/// `close` holds.
+#[inline(always)]
+fn first_close<const N: usize>(
+    entries: &[Entry<N>],
+    mut at: u32,
+    close: impl Fn(&[f64; N]) -> bool,
+) -> Option<[f64; N]> {
+    while at != END {
+        let entry = entries.get(at as usize)?;
+        if close(&entry.point) {
+            return Some(entry.point);
+        }
+        at = entry.next;
+    }
+    None
+}
+
+/// The order in which a search walks the axes: the axis whose nearest
+/// neighbour cell is nearest last, since the walk runs along the last axis
+/// first. The cells it visits first then hold the most of the ball around
+/// the candidate, and a conflict is found sooner: in 5-D to 8-D, 29 % to
+/// 56 % fewer cells in searches that find one.
+#[inline(always)]
+fn nearest_last<const N: usize>(steps: &[[Step; MAX_STEPS]; N], lens: &[usize; N]) -> [usize; N] {
+    let mut order = [0usize; N];
+    let mut near = [f64::INFINITY; N];
+    for (i, ((o, g), (s, &n))) in order
+        .iter_mut()
+        .zip(&mut near)
+        .zip(steps.iter().zip(lens))
+        .enumerate()
+    {
+        *o = i;
+        if n > 1 {
+            *g = s.get(1).map_or(f64::INFINITY, |s| s.gap2);
+        }
+    }
+    // An insertion sort, farthest first: N is small.
+    for i in 1..N {
+        let mut j = i;
+        while j > 0 {
+            let (Some(&a), Some(&b)) = (order.get(j - 1), order.get(j)) else {
+                break;
+            };
+            if near.get(a) >= near.get(b) {
+                break;
+            }
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    order
+}
+
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
+        // The candidate's own cell first: it holds the conflict in a third
+        // of the searches that find one in 5-D and 6-D (a fifth in 8-D),
+        // and those skip listing the axes' steps. The walk visits it again
+        // when it holds none, which costs less than a list of steps.
         let cell = self.cell_of(p);
-        let offset = zip_map(p, &self.lo, |x, lo| x - lo);
+        if let Some(q) = self.conflict_in(&cell, p) {
+            return Some(q);
+        }
         let mut steps = [[Step::default(); MAX_STEPS]; N];
         let mut lens = [0usize; N];
-        for (axis, ((out, len), (&c, &t))) in steps
-            .iter_mut()
-            .zip(&mut lens)
-            .zip(cell.iter().zip(&offset))
-            .enumerate()
-        {
-            // More steps than the plan allows cannot happen; were it to,
-            // the candidate is refused: the set stays valid.
-            let Some(n) = self.axis_steps(axis, c, t, out) else {
-                return Some(*p);
-            };
-            *len = n;
+        // More steps than the plan allows cannot happen; were it to, the
+        // candidate is refused: the set stays valid.
+        if self.steps(p, &cell, &mut steps, &mut lens).is_none() {
+            return Some(*p);
         }
-        let mut key = [0i64; N];
-        self.walk(0, &steps, &lens, &mut key, 0.0, p)
+        self.search(&steps, &lens, p)
     }
 
     fn bytes(&self) -> u64 {
@@ -497,7 +657,7 @@ impl Hasher for CellHasher {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{GridLayout, GridPlan, plan};
+    use super::super::{GridLayout, GridPlan, SparsePlan, plan};
     use super::*;
 
     fn sparse<const N: usize>(domain: &Domain<N>, r: f64) -> Sparse<N> {
@@ -523,6 +683,95 @@ mod tests {
                     g.conflict(&q).is_none(),
                     "exactly r is allowed: axis {axis}"
                 );
+            }
+        }
+    }
+
+    /// Both stores against a brute-force check, in 1-D to 8-D, bounded and
+    /// periodic, for radii small and large against the box (periodic axes
+    /// searched whole), with points on and next to cell faces, where a
+    /// rounded cell index is off by one.
+    #[test]
+    fn both_stores_find_exactly_the_conflicts_brute_force_finds() {
+        fn check<const N: usize>(extent: f64, periodic: [bool; N], r: f64, seed: u64) {
+            use crate::random::{below, seeded_rng, unit};
+            let d = Domain::new([-0.3; N], [extent - 0.3; N])
+                .unwrap()
+                .with_periodic(periodic);
+            let Ok(GridPlan::Sparse(p)) = plan(&d, r, GridLayout::Sparse, 1 << 30, None) else {
+                panic!("no sparse plan");
+            };
+            let mut grids = [
+                Sparse::new(&SparsePlan { array: true, ..p }, &d, r),
+                Sparse::new(&SparsePlan { array: false, ..p }, &d, r),
+            ];
+            assert!(matches!(grids[0].store, Store::Array { .. }), "array store");
+            assert!(matches!(grids[1].store, Store::Table { .. }), "table store");
+            let periods = d.periods();
+            let mut rng = seeded_rng(seed);
+            let mut stored: Vec<[f64; N]> = Vec::new();
+            for i in 0..600 {
+                let mut q = [0.0; N];
+                for (axis, x) in q.iter_mut().enumerate() {
+                    let (lo, side) = (d.lo()[axis], p.side[axis]);
+                    *x = if unit(&mut rng) < 0.3 {
+                        // On a cell face, or an ulp either side.
+                        let cells = usize::try_from(p.cells[axis]).unwrap();
+                        let face = lo + below(&mut rng, cells + 3) as f64 * side;
+                        match below(&mut rng, 3) {
+                            0 => face.next_down(),
+                            1 => face,
+                            _ => face.next_up(),
+                        }
+                    } else {
+                        lo + unit(&mut rng) * extent
+                    };
+                }
+                if !d.contains(&q) {
+                    continue;
+                }
+                let close = |a: &[f64; N]| periodic_distance_squared(a, &q, &periods) < r * r;
+                let expected = stored.iter().any(close);
+                for (g, name) in grids.iter().zip(["array", "table"]) {
+                    let found = g.conflict(&q);
+                    assert_eq!(
+                        found.is_some(),
+                        expected,
+                        "{N}-D {name} r = {r}, seed {seed}, #{i} {q:?}"
+                    );
+                    if let Some(a) = found {
+                        assert!(
+                            close(&a),
+                            "{N}-D {name}: reported {a:?} is not closer than r"
+                        );
+                    }
+                }
+                if !expected {
+                    for g in &mut grids {
+                        assert!(g.reserve(&q, u64::MAX) && g.insert(q), "insert");
+                    }
+                    stored.push(q);
+                }
+            }
+            assert!(
+                stored.len() > 1,
+                "{N}-D r = {r}: only {} points",
+                stored.len()
+            );
+        }
+        for seed in 0..3 {
+            for periodic in [false, true] {
+                check::<1>(1.0, [periodic], 0.05, seed);
+                check::<2>(1.0, [periodic, false], 0.1, seed);
+                check::<2>(1.0, [periodic; 2], 0.45, seed);
+                check::<3>(1.0, [periodic; 3], 0.2, seed);
+                check::<4>(1.0, [false, periodic, true, periodic], 0.3, seed);
+                check::<5>(1.0, [periodic; 5], 0.2, seed);
+                check::<5>(1.0, [periodic; 5], 0.5, seed);
+                check::<6>(1.0, [periodic; 6], 0.3, seed);
+                check::<7>(1.0, [periodic; 7], 0.4, seed);
+                check::<8>(1.0, [periodic; 8], 0.4, seed);
+                check::<8>(1.0, [periodic; 8], 0.7, seed);
             }
         }
     }
