@@ -663,10 +663,40 @@ impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
-        if self.remaining == 0 {
-            return None;
+        // A loop, not a call of itself: a first point left alone gets more
+        // picks (at most 63), and a debug build's frames are large.
+        loop {
+            if self.remaining == 0 {
+                return None;
+            }
+            if let Some(point) = self.step() {
+                self.remaining -= 1;
+                self.made += 1;
+                return Some(point);
+            }
+            if !self.again_around_first() {
+                return None;
+            }
         }
-        let point = if self.started {
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        if self.remaining == 0 || (self.started && self.active.is_empty()) {
+            (0, Some(0))
+        } else {
+            (0, usize::try_from(self.remaining).ok())
+        }
+    }
+}
+
+impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Iter<N, R, G> {}
+
+impl<const N: usize, R: Rng, G: Region<N>> Iter<N, R, G> {
+    /// The next point of Bridson's loop (the first point on the first
+    /// call), or `None` when the active list runs empty, the budget is hit
+    /// or no first point fits the region.
+    fn step(&mut self) -> Option<[f64; N]> {
+        if self.started {
             let Self {
                 rng,
                 region,
@@ -735,30 +765,9 @@ impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
                     None
                 }
             }
-        };
-        let Some(point) = point else {
-            // A first point left alone gets more picks (at most 63).
-            return if self.again_around_first() {
-                self.next()
-            } else {
-                None
-            };
-        };
-        self.remaining -= 1;
-        self.made += 1;
-        Some(point)
-    }
-
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        if self.remaining == 0 || (self.started && self.active.is_empty()) {
-            (0, Some(0))
-        } else {
-            (0, usize::try_from(self.remaining).ok())
         }
     }
 }
-
-impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Iter<N, R, G> {}
 
 /// The most picks around a run's first point while it is the only one:
 /// `64·k` throws.
