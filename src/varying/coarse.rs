@@ -10,7 +10,8 @@ use crate::error::Error;
 /// Cells are this much wider than `r_max`, so that a pair closer than
 /// `r_max` is never more than one cell apart on an axis, whatever the
 /// rounding of the cell index (its error is far below 1e-6 of a cell with
-/// at most [`MAX_CELLS_PER_AXIS`] cells).
+/// at most [`MAX_CELLS_PER_AXIS`] cells, multiplied by a rounded inverse
+/// of the side).
 const CELL_SLACK: f64 = 1.0 + 1e-6;
 /// The most cells on one axis.
 const MAX_CELLS_PER_AXIS: f64 = (1u64 << 20) as f64;
@@ -18,7 +19,8 @@ const MAX_CELLS_PER_AXIS: f64 = (1u64 << 20) as f64;
 #[derive(Debug)]
 pub(super) struct Coarse<const N: usize> {
     lo: [f64; N],
-    side: f64,
+    /// `1 / side`, where the side is `r_max·(1 + 1e-6)`.
+    inv_side: f64,
     cells_per_axis: [u32; N],
     periodic: [bool; N],
     /// The 3^N neighbours of a cell away from every face, as linear
@@ -75,7 +77,7 @@ impl<const N: usize> Coarse<N> {
         }
         Ok(Self {
             lo: domain.lo(),
-            side,
+            inv_side: 1.0 / side,
             cells_per_axis,
             periodic: domain.periodic(),
             deltas,
@@ -93,13 +95,14 @@ impl<const N: usize> Coarse<N> {
         let mut cell = [0u32; N];
         let axes = p.iter().zip(&self.lo).zip(&self.cells_per_axis);
         for (c, ((&x, &l), &m)) in cell.iter_mut().zip(axes) {
-            let u = ((x - l) / self.side).floor();
+            // Through i64, saturating (truncation is the floor: `x >= l`
+            // in the box), then clamped: no libm `floor` call.
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
-                reason = "clamped to 0..m, m <= 2^20"
+                reason = "a saturating cast, clamped to 0..m, m <= 2^20"
             )]
-            let i = u.clamp(0.0, f64::from(m - 1)) as u32;
+            let i = (((x - l) * self.inv_side) as i64).clamp(0, i64::from(m - 1)) as u32;
             *c = i;
         }
         cell

@@ -10,7 +10,7 @@
 //! only those levels, level `j` out to `ρ = max(r(c), min(top_j, largest))`,
 //! which bounds `max(r(c), r(q))` for every point `q` of that level that
 //! could be too close. The search runs over a stencil of that radius (from
-//! a family of radii `t_j·2^(m/8)`, built on first use, cut by the part of
+//! a family of radii `t_j·2^(m/16)`, built on first use, cut by the part of
 //! the cell the candidate lies in, as in `grid/dense.rs`), with the
 //! rounding margin of the level's grid; near a face, over the whole box of
 //! cells within the reach, wrapping on periodic axes.
@@ -33,8 +33,8 @@ const EMPTY: u32 = 0;
 /// The ratio of a level's band of radii.
 const LEVEL_STEP: f64 = core::f64::consts::SQRT_2;
 /// The ratio between consecutive search radii of a level's stencils:
-/// `2^(1/8)`, so a search reaches at most 9 % past what it needs.
-const STENCIL_STEP: f64 = 1.090_507_732_665_257_7;
+/// `2^(1/16)`, so a search reaches at most 4.4 % past what it needs.
+const STENCIL_STEP: f64 = 1.044_273_782_427_413_8;
 /// The largest `r_max / r_min` served (8 levels): past it the lowest
 /// levels' stencils, at up to `r_max` in cells of `r_min/√N`, grow as the
 /// ratio to the power `N`, and the lists ([`Lists`](super::lists::Lists))
@@ -155,10 +155,8 @@ impl<const N: usize> Level<N> {
         level.stencils = (0..level.radii.len().checked_mul(parts_n)?)
             .map(|_| None)
             .collect();
-        Some((
-            level,
-            stencil_bytes.saturating_add(u64::try_from(total).ok()?.saturating_mul(4)),
-        ))
+        let cells = u64::try_from(total).ok()?;
+        Some((level, stencil_bytes.saturating_add(cells.saturating_mul(4))))
     }
 
     /// Cells on each side that can hold a point closer than `r` to a point
@@ -539,6 +537,38 @@ impl<const N: usize> Levels<N> {
             if left == 0 {
                 return;
             }
+        }
+    }
+
+    /// Starts loading the cells [`Self::seed`] will read around `p`, row
+    /// by row (up to 3-D); a hint only.
+    pub(super) fn prefetch(&mut self, p: &[f64; N], r: f64) {
+        if N > 3 {
+            return;
+        }
+        let (lo, periodic) = (self.lo, self.periodic);
+        let j = self.level_of(r);
+        let Some(level) = self.levels.get_mut(j) else {
+            return;
+        };
+        let m = level
+            .radii
+            .iter()
+            .position(|&x| x >= r)
+            .unwrap_or(level.radii.len().saturating_sub(1));
+        let (cell, part) = level.locate(p, &lo);
+        level.build(m, part, &periodic);
+        let level = &*level;
+        let Some(built) = level.stencil(m, part) else {
+            return;
+        };
+        if !level.fits(&cell, &built.reach, &periodic) {
+            return;
+        }
+        let base = level.linear(&cell);
+        for &[first, last] in &built.stencil.rows {
+            crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(first));
+            crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(last));
         }
     }
 

@@ -17,7 +17,7 @@ mod levels;
 mod lists;
 
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
-use crate::conflict_cache::ConflictCache;
+use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
@@ -27,6 +27,13 @@ use coarse::Coarse;
 use core::iter::FusedIterator;
 use levels::Levels;
 use lists::Lists;
+
+/// The conflict cache's radius, in units of the parent's (`r0 / r(p)`).
+const QUICK_RADIUS: f64 = 63.0 / 64.0;
+/// `r(p) / r0` as `f32` (exact: 64/63 rounds once, to within `2⁻²⁴`, which
+/// with the offset's own rounding keeps the quick test's input within
+/// `2⁻²⁰` of the candidate's position in units of `r0`).
+const QUICK_STRETCH: f32 = 64.0 / 63.0;
 
 /// A stored point and its radius, side by side.
 type Stored<const N: usize> = ([f64; N], f64);
@@ -112,7 +119,12 @@ pub struct Varying<const N: usize, F> {
     ahead: OffsetBatch<N>,
     index: Index<N>,
     points: Vec<Stored<N>>,
-    active: Vec<u32>,
+    /// The active points, with their radii (copies: no indirection to
+    /// wait on).
+    active: Vec<Stored<N>>,
+    /// The next two picks, drawn ahead so that their memory is fetched
+    /// while earlier picks run (as the fixed radius's loop).
+    next_pick: [Option<usize>; 2],
     remaining: u64,
     budget: u64,
     started: bool,
@@ -226,6 +238,7 @@ impl<const N: usize> PoissonDisk<N> {
             index,
             points: Vec::new(),
             active: Vec::new(),
+            next_pick: [None; 2],
             remaining: self.max_points().unwrap_or(u64::MAX),
             budget: budget.saturating_sub(needed),
             started: false,
@@ -274,7 +287,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             return Filed::Taken;
         }
         self.points.push((p, r));
-        self.active.push(index);
+        self.active.push((p, r));
         Filed::Yes
     }
 }
@@ -289,15 +302,17 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
     /// blocker only its own larger radius reaches is left to the index.
     #[inline(always)]
     fn pick<const B: usize>(&mut self, i: usize) -> Step<N> {
-        let Some(&(parent, rp)) = self
-            .active
-            .get(i)
-            .and_then(|&k| self.points.get(k as usize))
-        else {
+        let Some(&(parent, rp)) = self.active.get(i) else {
             return Step::Stop;
         };
         let periods = self.periods;
-        let mut cache = ConflictCache::<N, B>::new(parent, rp);
+        // The cache's quick test (`f32`, in units of its radius) says
+        // "closer than `r0`", which means too close only for candidates
+        // with `r(c) >= r0`: a little under `r(p)`, so that it serves
+        // nearly every candidate where the field is smooth; the others
+        // take its exact test at `r(c)`.
+        let r0 = rp * QUICK_RADIUS;
+        let mut cache = ConflictCache::<N, B>::new(parent, r0);
         cache.push(&parent);
         if let Index::Levels(levels) = &mut self.index {
             levels.seed(&self.points, &parent, rp, B - 1, |q| cache.push(q));
@@ -308,16 +323,21 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         let interior =
             !self.domain.any_periodic() && self.domain.holds_ball(&parent, 2.0 * self.r_max);
         let ahead = self.candidates.reads_ahead();
+        // Coordinates below 2²⁸·r0: the candidate is its offset from the
+        // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`).
+        let quick = ahead
+            && !self.domain.any_periodic()
+            && parent.iter().all(|x| x.abs() < r0 * NEAR_ORIGIN);
         let mut state = if ahead {
             [0.0; N]
         } else {
             self.candidates.start(&mut self.rng)
         };
         for _ in 0..self.attempts {
-            let offset = if ahead {
-                self.ahead.next(&self.candidates, &mut self.rng).0
+            let (offset, unit) = if ahead {
+                self.ahead.next(&self.candidates, &mut self.rng)
             } else {
-                self.candidates.offset(&mut self.rng, &mut state)
+                (self.candidates.offset(&mut self.rng, &mut state), [0.0; N])
             };
             let mut c = add(&parent, &scale(&offset, rp));
             if !interior && !self.domain.wrap(&mut c) {
@@ -344,7 +364,13 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
                     continue;
                 }
             }
-            if cache.block_periodic(&c, rc * rc, &periods) {
+            let blocked = if quick && rc >= r0 {
+                // The offset in units of r0: `unit` is in units of r(p).
+                cache.block_relative(&unit.map(|u| u * QUICK_STRETCH))
+            } else {
+                cache.block_periodic(&c, rc * rc, &periods)
+            };
+            if blocked {
                 continue;
             }
             if let Some(q) = self.index.blocked(&self.points, &periods, &c, rc) {
@@ -395,7 +421,23 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
             return Some(p);
         }
         while !self.active.is_empty() {
-            let i = below(&mut self.rng, self.active.len());
+            let len = self.active.len();
+            // Each drawn uniform over `0..len + 2`, which bounds the list's
+            // length when it is used (a pick adds or removes one entry);
+            // kept if below the length then, redrawn otherwise: uniform
+            // over `0..len` either way.
+            let [now, soon] = self.next_pick;
+            let i = now
+                .filter(|&i| i < len)
+                .unwrap_or_else(|| below(&mut self.rng, len));
+            let later = below(&mut self.rng, len + 2);
+            self.next_pick = [soon, Some(later)];
+            crate::prefetch::prefetch(&self.active, later);
+            if let (Some(&(p, r)), Index::Levels(levels)) =
+                (soon.and_then(|j| self.active.get(j)), &mut self.index)
+            {
+                levels.prefetch(&p, r);
+            }
             // A conflict cache sized for the dimension, as the fixed
             // radius's: 8 slots in 2-D, 16 from 3-D up.
             let step = if N <= 2 {
