@@ -16,7 +16,6 @@
 #[allow(dead_code, reason = "shared with `plot`, which uses all of it")]
 #[path = "plot/canvas.rs"]
 mod canvas;
-#[allow(dead_code, reason = "shared; this example uses only a few helpers")]
 #[path = "common/mod.rs"]
 mod common;
 #[path = "plot/font.rs"]
@@ -74,6 +73,9 @@ enum What {
     Source,
 }
 
+/// A radius field over the plane.
+type Field = dyn Fn(&[f64; 2]) -> f64;
+
 fn main() -> ExitCode {
     let args = Args::parse();
     common::finish("varying", run(&args))
@@ -83,7 +85,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     if args.what == What::Source {
         return save(&source(), &args.out);
     }
-    let (width, field): (f64, Box<dyn Fn(&[f64; 2]) -> f64>) = match &args.image {
+    let (width, field): (f64, Box<Field>) = match &args.image {
         Some(path) if args.what == What::Image => {
             let image = Grey::read(path)?;
             let width = f64::from(image.width) / f64::from(image.height);

@@ -92,7 +92,8 @@ impl<const N: usize> Level<N> {
         let mut side = [0.0; N];
         for ((count, s), e) in counts.iter_mut().zip(&mut side).zip(domain.extent()) {
             let cells = (e / max_side).ceil();
-            if !(cells <= 2f64.powi(31)) {
+            // NaN (an infinite box) fails too.
+            if cells.is_nan() || cells > 2f64.powi(31) {
                 return None;
             }
             #[expect(
