@@ -351,6 +351,9 @@ impl<const N: usize> Levels<N> {
             // Zeroed memory: pages are touched only where the level's
             // points are.
             level.cells = vec![EMPTY; total];
+            // Before the first write, as the fixed radius's grid: fewer
+            // TLB misses over these large, sparsely read arrays.
+            crate::huge_pages::advise(&level.cells);
         }
         Ok((
             Self {
@@ -497,6 +500,28 @@ impl<const N: usize> Levels<N> {
         }
     }
 
+    /// The level of radius `r`, the cell of `p` in it (its index) and the
+    /// stencil of radius `r` (its band's top) around it, if that needs no
+    /// periodic wrap: where [`Self::seed`] and [`Self::prefetch`] look.
+    fn around(&mut self, p: &[f64; N], r: f64) -> Option<(&Level<N>, usize, &Built<N>)> {
+        let (lo, periodic) = (self.lo, self.periodic);
+        let j = self.level_of(r);
+        let level = self.levels.get_mut(j)?;
+        let m = level
+            .radii
+            .iter()
+            .position(|&x| x >= r)
+            .unwrap_or(level.radii.len().saturating_sub(1));
+        let (cell, part) = level.locate(p, &lo);
+        level.build(m, part, &periodic);
+        let level = &*level;
+        let built = level.stencil(m, part)?;
+        if !level.fits(&cell, &built.reach, &periodic) {
+            return None;
+        }
+        Some((level, level.linear(&cell), built))
+    }
+
     /// Hands up to `limit` points of `p`'s level near `p` to `take`,
     /// nearest cells first: those within about `r` (the stencil of its
     /// band's top), where no periodic wrap is needed.
@@ -508,26 +533,9 @@ impl<const N: usize> Levels<N> {
         limit: usize,
         mut take: impl FnMut(&[f64; N]),
     ) {
-        let (lo, periodic) = (self.lo, self.periodic);
-        let j = self.level_of(r);
-        let Some(level) = self.levels.get_mut(j) else {
+        let Some((level, base, built)) = self.around(p, r) else {
             return;
         };
-        let m = level
-            .radii
-            .iter()
-            .position(|&x| x >= r)
-            .unwrap_or(level.radii.len().saturating_sub(1));
-        let (cell, part) = level.locate(p, &lo);
-        level.build(m, part, &periodic);
-        let level = &*level;
-        let Some(built) = level.stencil(m, part) else {
-            return;
-        };
-        if !level.fits(&cell, &built.reach, &periodic) {
-            return;
-        }
-        let base = level.linear(&cell);
         let mut left = limit;
         let mut found = [EMPTY; CHUNK];
         for chunk in built.stencil.offsets.chunks(CHUNK) {
@@ -550,26 +558,9 @@ impl<const N: usize> Levels<N> {
         if N > 3 {
             return;
         }
-        let (lo, periodic) = (self.lo, self.periodic);
-        let j = self.level_of(r);
-        let Some(level) = self.levels.get_mut(j) else {
+        let Some((level, base, built)) = self.around(p, r) else {
             return;
         };
-        let m = level
-            .radii
-            .iter()
-            .position(|&x| x >= r)
-            .unwrap_or(level.radii.len().saturating_sub(1));
-        let (cell, part) = level.locate(p, &lo);
-        level.build(m, part, &periodic);
-        let level = &*level;
-        let Some(built) = level.stencil(m, part) else {
-            return;
-        };
-        if !level.fits(&cell, &built.reach, &periodic) {
-            return;
-        }
-        let base = level.linear(&cell);
         for &[first, last] in &built.stencil.rows {
             crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(first));
             crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(last));

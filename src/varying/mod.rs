@@ -1,16 +1,23 @@
 //! A radius that varies with position ([`PoissonDisk::iter_varying`]): no
 //! two points `p`, `q` closer than `max(r(p), r(q))`.
 //!
-//! Kept apart from the fixed-radius loop (`sampler.rs`), which it shares
-//! nothing hot with: points of different radii do not fit the dense grid's
-//! one point per cell, so this mode keeps a linked list per cell of side
-//! `r_max` (slightly more): a head per cell, a next per point. A candidate
-//! is checked first against the parent and the last 7 points that turned
-//! its pick's candidates away (16 slots measured 3 % slower in 3-D), then
-//! against every point of the 3^N cells around it, its own cell first;
-//! away from the faces the neighbour cells are fixed offsets in the cell
-//! array (15 % faster in 3-D). Exact, but about 3× the time of a fixed
-//! radius at the same count.
+//! Bridson's loop as the fixed radius runs it (a pick drawn two ahead, a
+//! per-pick [`ConflictCache`] seeded with the parent's neighbours, annulus
+//! offsets drawn eight ahead), over an index of its own: points of
+//! different radii do not fit the fixed radius's grid of one point per cell
+//! of side `r/√N`.
+//!
+//! - [`Levels`] (`levels.rs`), the usual index: a dense grid per band of
+//!   radii (a factor √2), searched with stencils of `grid/dense.rs`.
+//! - [`Lists`] (`lists.rs`), the fallback when the bands' grids would not
+//!   fit the memory budget, past 4-D, or past `r_max / r_min = 16`: a
+//!   linked list per cell of side `r_max`, every point of the 3^N cells
+//!   around a candidate checked (slow where a cell holds many points).
+//! - `coarse.rs`: the grid of cells of side `r_max` both hang data on.
+//!
+//! Both find every point too close, and the loop's decisions are exact
+//! (`f64`, as the oracle), so the points do not depend on the index (a
+//! unit test compares them).
 
 mod coarse;
 mod levels;
@@ -142,19 +149,26 @@ impl<const N: usize> PoissonDisk<N> {
     /// on-sphere ones at `r(p)`, moved out (up to 8 times) to `r(c)` where
     /// the field is larger at the candidate `c`. The same seed and
     /// field give the same points. The point cap and budget apply (the
-    /// budget on an estimate of the bytes per point); the layout does not.
+    /// budget on the grids allocated up front and an estimate of the bytes
+    /// per point); [`Builder::layout`](crate::Builder::layout) does not.
     ///
     /// The guarantee is symmetric, so it does not depend on which point
-    /// came first. Speed: with `r_max / r_min = 4` (a linear field), a
-    /// whole `points --radius-range` run took 3.4× (2-D) and 3.1× (3-D)
-    /// the CPU time of a fixed radius making the same number of points
-    /// (README has the commands).
+    /// came first. Speed: up to 4-D and `r_max / r_min <= 16`, each band
+    /// of radii (a factor √2) gets a dense grid of its own, cells of side
+    /// `r_band/√N` (together up to about twice the cells of one grid at
+    /// `r_min`, 4 bytes each), when they fit the memory budget; a whole
+    /// `points --radius-range` run with `r_max / r_min = 4` (a linear field)
+    /// then took about 2× the CPU time of a fixed radius making the same
+    /// number of points in 2-D, 2.4× in 3-D (README has the figures).
+    /// Otherwise a slower index of lists per cell of side `r_max` serves,
+    /// with the same points.
     ///
     /// # Errors
     /// [`Error::InvalidRadius`] if `r_min` is not a valid radius or is above
     /// the sampler's radius; [`Error::BoxTooWide`] if the box spans more
     /// than 2²⁰ cells of side `r_max` on some axis; [`Error::GridTooLarge`]
-    /// if its cells (4 bytes each) do not fit the memory budget.
+    /// if not even the slower index's cells of side `r_max` (4 bytes each)
+    /// fit the memory budget.
     ///
     /// # Example: a radius growing from left to right
     /// ```
