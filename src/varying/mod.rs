@@ -483,7 +483,7 @@ mod tests {
         let domain = Domain::from_extent([1.0; N])
             .unwrap()
             .with_periodic([periodic; N]);
-        let r_max = [0.0, 0.01, 0.04, 0.12, 0.25][N];
+        let r_max = [0.0, 0.02, 0.06, 0.18, 0.35][N];
         let kind = if sphere {
             crate::Candidates::Sphere
         } else {
