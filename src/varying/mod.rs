@@ -45,12 +45,12 @@ const QUICK_STRETCH: f32 = 64.0 / 63.0;
 /// A stored point and its radius, side by side.
 type Stored<const N: usize> = ([f64; N], f64);
 
-/// Heap bytes counted per point: the point, its radius, its place in a
-/// cell list and in the active list, and the hash map's share, each with
-/// room for a vector's doubling.
+/// Heap bytes counted per point: the point and its radius, twice (the
+/// points and the active list), and its place in a cell list (the lists
+/// index), each with room for a vector's doubling.
 fn bytes_per_point<const N: usize>() -> u64 {
     let n = u64::try_from(N).unwrap_or(u64::MAX);
-    2_u64.saturating_mul(n.saturating_mul(12).saturating_add(64))
+    2_u64.saturating_mul(n.saturating_mul(16).saturating_add(32))
 }
 
 /// Whether stored point `i` lies closer to `c` than `max(rc, r(i))`
