@@ -1,11 +1,11 @@
 //! Measures the densities behind `Builder::about_points` (the count mode):
 //! how many points the sampler actually makes per `r^N`, in the interior of
 //! a large periodic box and along thin axes, for each dimension and
-//! candidate kind at the default `k = 30`. Run it as
-//! `cargo run --release --example count_density -- interior` (or `axis`,
-//! `cube`);
+//! candidate kind at the default `k = 30`, and how both change with `k`.
+//! Run it as `cargo run --release --example count_density -- interior` (or
+//! `axis`, `cube`, `attempts`);
 //! it prints the tables that `src/density.rs` holds (`INTERIOR`, `AXIS_2D`,
-//! `AXIS_3D`). `tests/count_mode.rs` checks the count mode built on them.
+//! `AXIS_3D`, `ATTEMPTS_2D`, `ATTEMPTS_3D`). `tests/count_mode.rs` checks the count mode built on them.
 
 #[path = "common/mod.rs"]
 mod common;
@@ -41,7 +41,17 @@ enum What {
     /// From 4-D to 8-D, the extra length c of a bounded axis, from bounded
     /// cubes x radii wide: count = interior · (x + c)^N
     Cube,
+    /// 2-D and 3-D, for each k of `ATTEMPTS_K`: the interior density
+    /// relative to k = 30 (a large periodic cube), and the change in the
+    /// extra length of a bounded axis (a bounded cube about 1500 points
+    /// large)
+    Attempts,
 }
+
+/// The attempts `k` that `density.rs` tabulates (`ATTEMPTS_K`).
+const ATTEMPTS_K: [u32; 17] = [
+    1, 2, 3, 5, 7, 10, 15, 20, 30, 45, 60, 100, 150, 200, 300, 500, 1000,
+];
 
 const KINDS: [(Candidates, &str); 2] = [
     (Candidates::Annulus, "annulus"),
@@ -54,6 +64,7 @@ fn counts<const N: usize>(
     periodic: [bool; N],
     r: f64,
     kind: Candidates,
+    attempts: u32,
     seeds: u64,
 ) -> (f64, f64) {
     let domain = Domain::from_extent(extent)
@@ -61,6 +72,7 @@ fn counts<const N: usize>(
         .with_periodic(periodic);
     let sampler = PoissonDisk::<N>::builder(domain, r)
         .candidates(kind)
+        .attempts(attempts)
         .build()
         .expect("sampler");
     let n: Vec<f64> = (0..seeds)
@@ -81,7 +93,7 @@ fn interior<const N: usize>(args: &Args) {
             args.points
         };
         let side = per_point.powf(1.0 / N as f64);
-        let (mean, sd) = counts([side; N], [true; N], 1.0, kind, args.seeds);
+        let (mean, sd) = counts([side; N], [true; N], 1.0, kind, 30, args.seeds);
         let volume: f64 = [side; N].iter().product();
         println!(
             "{N}-D {name:7}: {:.5} points per r^{N} (sd of the mean {:.5}, {mean:.0} points)",
@@ -110,7 +122,7 @@ fn axis<const N: usize>(args: &Args, interior: [f64; 2]) {
                 extent[0] = x;
                 let mut periodic = [true; N];
                 periodic[0] = !bounded;
-                let (mean, _) = counts(extent, periodic, 1.0, kind, args.seeds);
+                let (mean, _) = counts(extent, periodic, 1.0, kind, 30, args.seeds);
                 let rest: f64 = extent.iter().skip(1).product();
                 let e = mean / (interior[k] * rest);
                 print!("({x}, {e:.4}), ");
@@ -122,9 +134,34 @@ fn axis<const N: usize>(args: &Args, interior: [f64; 2]) {
 
 fn cube<const N: usize>(args: &Args, interior: f64, widths: &[f64]) {
     for &x in widths {
-        let (mean, _) = counts([x; N], [false; N], 1.0, Candidates::Annulus, args.seeds);
+        let (mean, _) = counts([x; N], [false; N], 1.0, Candidates::Annulus, 30, args.seeds);
         let c = (mean / interior).powf(1.0 / N as f64) - x;
         println!("{N}-D bounded cube {x} radii wide: {mean:.0} points, c = {c:.3}");
+    }
+}
+
+/// Per kind, a row `(m, Δ)` for each `k` of [`ATTEMPTS_K`]: `m` the
+/// interior density over that at k = 30 (same seeds, same periodic cube of
+/// about `points` points), `Δ` the extra length of a bounded axis, in
+/// radii, minus that at k = 30 (from bounded cubes `width` radii wide,
+/// `count = m · interior · (width + c)^N`, 4× the seeds).
+fn attempts<const N: usize>(args: &Args, interior: [f64; 2], width: f64) {
+    for (i, (kind, name)) in KINDS.into_iter().enumerate() {
+        let side = (args.points / interior[i]).powf(1.0 / N as f64);
+        let extra = |k: u32, m: f64| {
+            let (mean, _) = counts([width; N], [false; N], 1.0, kind, k, 4 * args.seeds);
+            (mean / (m * interior[i])).powf(1.0 / N as f64) - width
+        };
+        let (base, _) = counts([side; N], [true; N], 1.0, kind, 30, args.seeds);
+        let c30 = extra(30, 1.0);
+        print!("{N}-D {name}: [");
+        for k in ATTEMPTS_K {
+            let (mean, _) = counts([side; N], [true; N], 1.0, kind, k, args.seeds);
+            let m = mean / base;
+            let delta = extra(k, m) - c30;
+            print!("[{m:.5}, {delta:.4}], ");
+        }
+        println!("]");
     }
 }
 
@@ -148,6 +185,10 @@ fn main() -> ExitCode {
             cube::<6>(&args, 0.66856, &[4.0, 3.0]);
             cube::<7>(&args, 0.78334, &[3.0]);
             cube::<8>(&args, 0.96472, &[2.5]);
+        }
+        What::Attempts => {
+            attempts::<2>(&args, [0.61538, 0.88088], 50.0);
+            attempts::<3>(&args, [0.57556, 0.72980], 14.0);
         }
         What::Axis => match args.dim {
             2 => axis::<2>(&args, [0.61538, 0.88088]),

@@ -157,6 +157,122 @@ const AXIS_3D: [[[f64; 35]; 2]; 2] = [
     ],
 ];
 
+/// The attempts `k` at which [`ATTEMPTS_2D`] and [`ATTEMPTS_3D`] are
+/// tabulated: count mode's range of `k` in 2-D and 3-D. Below 3, growth dies out at
+/// random (in 2-D with `k = 1` after a handful of points), so no radius
+/// gives a count.
+pub(crate) const ATTEMPTS_K: [f64; 15] = [
+    3.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 100.0, 150.0, 200.0, 300.0, 500.0, 1000.0,
+];
+
+/// How the density changes with `k` in 2-D, `[annulus, sphere]`, at each
+/// [`ATTEMPTS_K`]: `[m, Δ]`, `m` the interior density over that at
+/// `k = 30`, `Δ` the change (in radii) of a bounded axis's extra length
+/// `E(x) - x`. Measured with `count_density -- attempts --points 50000
+/// --seeds 2`: `m` in a periodic cube of 5·10⁴ points, the same seeds at
+/// each `k`; `Δ` from bounded cubes 50 radii wide, 8 seeds (its noise,
+/// about ±0.1 radii, moves a count of 1000 points by about 0.4 %).
+const ATTEMPTS_2D: [[[f64; 2]; 15]; 2] = [
+    [
+        [0.80354, -0.5632],
+        [0.86949, -0.1558],
+        [0.90218, -0.1294],
+        [0.93265, -0.0255],
+        [0.96103, -0.1626],
+        [0.97776, -0.0109],
+        [1.00000, 0.0000],
+        [1.01941, 0.0331],
+        [1.03168, 0.0545],
+        [1.05254, -0.0296],
+        [1.06710, 0.0508],
+        [1.07473, 0.1763],
+        [1.08812, 0.1100],
+        [1.09875, 0.2180],
+        [1.11330, 0.0630],
+    ],
+    [
+        [0.82571, -0.2047],
+        [0.86112, -0.1729],
+        [0.87794, 0.0035],
+        [0.91145, -0.0405],
+        [0.94985, -0.0930],
+        [0.97292, -0.0452],
+        [1.00000, 0.0000],
+        [1.02028, 0.0258],
+        [1.03074, 0.0319],
+        [1.04451, 0.0489],
+        [1.05114, -0.0253],
+        [1.05539, 0.0405],
+        [1.05782, 0.0513],
+        [1.06183, 0.0588],
+        [1.06430, 0.0514],
+    ],
+];
+
+/// [`ATTEMPTS_2D`] in 3-D (bounded cubes 14 radii wide).
+const ATTEMPTS_3D: [[[f64; 2]; 15]; 2] = [
+    [
+        [0.71690, -0.5866],
+        [0.80205, -0.2958],
+        [0.84997, -0.2101],
+        [0.89275, -0.1269],
+        [0.93793, -0.0929],
+        [0.96562, -0.0232],
+        [1.00000, 0.0000],
+        [1.03150, 0.0468],
+        [1.05108, 0.0629],
+        [1.08574, 0.0782],
+        [1.10679, 0.1067],
+        [1.12267, 0.1079],
+        [1.14350, 0.1277],
+        [1.16243, 0.1432],
+        [1.18906, 0.1807],
+    ],
+    [
+        [0.74897, -0.4909],
+        [0.84749, -0.2660],
+        [0.88957, -0.1551],
+        [0.92352, -0.0910],
+        [0.95745, -0.0558],
+        [0.97654, -0.0264],
+        [1.00000, 0.0000],
+        [1.01880, 0.0318],
+        [1.03186, 0.0423],
+        [1.05222, 0.0466],
+        [1.06338, 0.0708],
+        [1.07293, 0.0712],
+        [1.08310, 0.0956],
+        [1.09518, 0.0958],
+        [1.10747, 0.1038],
+    ],
+];
+
+/// `[m, Δ]` of [`ATTEMPTS_2D`] / [`ATTEMPTS_3D`] at `k`, linear between
+/// the tabulated `k` (clamped to the table's ends); `[1, 0]` outside 2-D
+/// and 3-D, where count mode is calibrated at `k = 30` only.
+fn attempts_factors<const N: usize>(sphere: bool, k: u32) -> [f64; 2] {
+    let tables = match N {
+        2 => &ATTEMPTS_2D,
+        3 => &ATTEMPTS_3D,
+        _ => return [1.0, 0.0],
+    };
+    let table = if sphere { &tables[1] } else { &tables[0] };
+    let k = f64::from(k);
+    let mut previous = (ATTEMPTS_K[0], table[0]);
+    if k <= previous.0 {
+        return previous.1;
+    }
+    for (&at, &row) in ATTEMPTS_K.iter().zip(table).skip(1) {
+        if k <= at {
+            let (k0, [m0, d0]) = previous;
+            let t = (k - k0) / (at - k0);
+            return [m0 + (row[0] - m0) * t, d0 + (row[1] - d0) * t];
+        }
+        previous = (at, row);
+    }
+    previous.1
+}
+
 /// The effective length of an axis `x` radii long, from its table: linear
 /// between the tabulated lengths, `E(x_0)` below the first, and
 /// `x + (E(16) - 16)` past the last.
@@ -176,20 +292,24 @@ fn effective_length(table: &[f64; 35], x: f64) -> f64 {
 }
 
 /// The expected number of points a sampler makes in a box with these
-/// axis lengths and periodic axes, at radius `radius`, `k = 30`: the
-/// interior density times the product of the axes' effective lengths.
+/// axis lengths and periodic axes, at radius `radius`, `k` attempts: the
+/// interior density times the product of the axes' effective lengths, in
+/// 2-D and 3-D both moved by [`attempts_factors`] (a bounded axis's extra
+/// length by `Δ`, in full from 4 radii long, in proportion below).
 /// 1-D: a bounded segment holds about one point more than a periodic one
 /// (both ends can hold a point); 4-D up: [`BOUNDED_HIGH`].
 pub(crate) fn expected_count<const N: usize>(
     extent: &[f64; N],
     periodic: &[bool; N],
     sphere: bool,
+    attempts: u32,
     radius: f64,
 ) -> f64 {
     let Some(&[annulus, on_sphere]) = INTERIOR.get(N.wrapping_sub(1)) else {
         return f64::NAN;
     };
-    let interior = if sphere { on_sphere } else { annulus };
+    let [m, delta] = attempts_factors::<N>(sphere, attempts);
+    let interior = if sphere { on_sphere } else { annulus } * m;
     let [annulus_tables, sphere_tables] = if N == 2 { &AXIS_2D } else { &AXIS_3D };
     let high = BOUNDED_HIGH.get(N.wrapping_sub(4)).copied().unwrap_or(0.0);
     let [bounded, periodic_table] = if sphere {
@@ -204,7 +324,7 @@ pub(crate) fn expected_count<const N: usize>(
             (1, true) => x,
             (1, false) => x + 1.0 / interior,
             (2 | 3, true) => effective_length(periodic_table, x),
-            (2 | 3, false) => effective_length(bounded, x),
+            (2 | 3, false) => effective_length(bounded, x) + delta * (x / 4.0).min(1.0),
             (_, true) => x,
             (_, false) => x + high,
         };
@@ -221,11 +341,12 @@ pub(crate) fn radius_for_count<const N: usize>(
     extent: &[f64; N],
     periodic: &[bool; N],
     sphere: bool,
+    attempts: u32,
     count: u64,
 ) -> f64 {
     #[expect(clippy::cast_precision_loss, reason = "a target, rounded is fine")]
     let target = count as f64;
-    let at = |r: f64| expected_count(extent, periodic, sphere, r);
+    let at = |r: f64| expected_count(extent, periodic, sphere, attempts, r);
     // Start above every axis, where any box holds a handful of points.
     let mut high = extent.iter().fold(1e-300_f64, |m, &e| m.max(e)) * 64.0;
     if at(high).is_nan() {
@@ -286,16 +407,16 @@ mod tests {
             ([5.0, 0.5, 1.0], [true, false, true], true),
         ] {
             for count in [1000_u64, 12_345, 1 << 30] {
-                let r = radius_for_count(&extent, &periodic, sphere, count);
+                let r = radius_for_count(&extent, &periodic, sphere, 30, count);
                 #[expect(clippy::cast_precision_loss, reason = "test")]
                 let target = count as f64;
-                let at = expected_count(&extent, &periodic, sphere, r);
+                let at = expected_count(&extent, &periodic, sphere, 30, r);
                 assert!((at / target - 1.0).abs() < 1e-9, "{count}: {at} at r = {r}");
-                let beyond = expected_count(&extent, &periodic, sphere, r * (1.0 + 1e-6));
+                let beyond = expected_count(&extent, &periodic, sphere, 30, r * (1.0 + 1e-6));
                 assert!(beyond < target, "{count}: the largest such radius");
             }
         }
-        let none = radius_for_count(&[1.0; 9], &[false; 9], false, 10);
+        let none = radius_for_count(&[1.0; 9], &[false; 9], false, 30, 10);
         assert!(none.is_nan(), "no table past 8-D");
     }
 

@@ -41,6 +41,16 @@ pub enum Error {
         /// The largest `k` accepted.
         max: u32,
     },
+    /// Occurs when count mode ([`Builder::about_points`](crate::Builder::about_points))
+    /// in 2-D or 3-D is asked for with `k` outside the range its density
+    /// tables cover: below 3 growth dies out at random, so no radius gives
+    /// a count; above 1000 the density, still creeping up, is not measured.
+    CountAttemptsOutOfRange {
+        /// The smallest `k` count mode takes.
+        min: u32,
+        /// The largest.
+        max: u32,
+    },
     /// Occurs when a point cap ([`Builder::max_points`](crate::Builder::max_points))
     /// is negative: only an `i32`, the type of an untyped integer literal,
     /// can be.
@@ -162,6 +172,10 @@ impl fmt::Display for Error {
                  than r to an earlier one"
             ),
             Self::InvalidPointCount => f.write_str("a point count or cap must not be negative"),
+            Self::CountAttemptsOutOfRange { min, max } => write!(
+                f,
+                "a point count needs the number of attempts k within {min}..={max} (2-D and 3-D)"
+            ),
             Self::BoxTooWide { axis } => write!(
                 f,
                 "the box spans more than 2^40 radii on axis {axis}: grow the radius or shrink the box"

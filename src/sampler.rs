@@ -24,6 +24,10 @@ pub const DEFAULT_ATTEMPTS: u32 = 30;
 /// for hours.
 pub const MAX_ATTEMPTS: u32 = 1 << 16;
 
+/// The attempts `k` count mode takes in 2-D and 3-D: the range of its
+/// density tables (`density::ATTEMPTS_K`).
+pub(crate) const COUNT_ATTEMPTS: core::ops::RangeInclusive<u32> = 3..=1000;
+
 /// Where new points may go: the acceptance region of a run with
 /// [`PoissonDisk::iter_with`]. Implemented for [`Everywhere`] (a plain run)
 /// and for every closure `Fn(&[f64; N]) -> bool` (a mask: `true` where a
@@ -227,11 +231,13 @@ impl<const N: usize> Builder<N> {
     /// derives the radius at which this sampler, in this box, makes `n`
     /// points on average (replacing any radius given), from the density the
     /// sampler reaches at `k = 30` in the box's interior and along its faces,
+    /// and in 2-D and 3-D how both change with `k` ([`attempts`](Self::attempts)),
     /// measured once and tabulated (`examples/count_density.rs`; the model is
     /// in `src/density.rs`). One run, no trial runs.
     ///
     /// The expected count (the mean over seeds) is within ±2 % of `n` for
-    /// `n >= 1000` in 2-D and 3-D, either candidate kind, any mix of
+    /// `n >= 1000` in 2-D and 3-D, any `k` from 3 to 1000 (tabulated at 15
+    /// values, linear in between), either candidate kind, any mix of
     /// bounded and periodic axes, in every box at least 4 radii thick on
     /// each axis at the radius derived (at 1 000 points, a 2-D strip up to
     /// about 1:60, a 3-D rod up to about 1:20:20). A single run scatters
@@ -246,9 +252,14 @@ impl<const N: usize> Builder<N> {
     /// 4-D to 7-D, bounded or periodic, and 1 % (periodic) in 8-D; in a
     /// bounded 8-D cube it came 2.7 % above `n` (8 seeds). From 4-D up a thin box has no table of its own. Past 8-D
     /// there is none at all, and `build` gives [`Error::InvalidRadius`].
-    /// The tables are for `k = 30`; other `k` change the density, and count
-    /// mode does not correct for it: in a 2-D unit square asked for 10 000
-    /// points, `k = 10` gives about 7 % fewer, `k = 100` about 5 % more.
+    /// In 2-D and 3-D, `k` below 3 or above 1000 makes `build` fail with
+    /// [`Error::CountAttemptsOutOfRange`] rather than miss the count: below
+    /// 3 growth dies out at random (in 2-D with `k = 1` after a handful of
+    /// points), so no radius gives a count; above 1000 the density still
+    /// creeps up (2 % from `k = 500` to `1000` in 3-D) and is not measured.
+    /// Elsewhere the tables are for `k = 30` only; other `k` change the
+    /// density there and are not corrected for (in 2-D, before the
+    /// correction, `k = 10` gave about 7 % fewer points, `k = 100` 5 % more).
     ///
     /// This is the tool for "about `n` well-spread points": unlike a
     /// [`max_points`](Self::max_points) cap, it covers the whole box.
@@ -278,7 +289,8 @@ impl<const N: usize> Builder<N> {
     /// [`Error::ZeroDimension`] if `N == 0`; the [`Domain::new`] errors if
     /// the domain was deserialised from bad values;
     /// [`Error::InvalidPointCount`] if count mode asks for 0 points (or a
-    /// negative number); [`Error::InvalidRadius`] if the radius (given, or
+    /// negative number); [`Error::CountAttemptsOutOfRange`] if it does in
+    /// 2-D or 3-D with `k` outside `3 ..= 1000`; [`Error::InvalidRadius`] if the radius (given, or
     /// derived from the count) is NaN, infinite, `<= 0` or outside
     /// `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
     /// [`Error::TooManyAttempts`] if `k > MAX_ATTEMPTS`;
@@ -298,12 +310,21 @@ impl<const N: usize> Builder<N> {
         let radius = match self.about_points {
             None => self.radius,
             Some(0) => return Err(Error::InvalidPointCount),
-            Some(n) => radius_for_count(
-                &domain.extent(),
-                &domain.periodic(),
-                self.candidates == Candidates::Sphere,
-                n,
-            ),
+            Some(n) => {
+                if (N == 2 || N == 3) && !COUNT_ATTEMPTS.contains(&self.attempts) {
+                    return Err(Error::CountAttemptsOutOfRange {
+                        min: *COUNT_ATTEMPTS.start(),
+                        max: *COUNT_ATTEMPTS.end(),
+                    });
+                }
+                radius_for_count(
+                    &domain.extent(),
+                    &domain.periodic(),
+                    self.candidates == Candidates::Sphere,
+                    self.attempts,
+                    n,
+                )
+            }
         };
         check_radius_and_attempts(radius, self.attempts)?;
         if self.negative_cap {

@@ -28,11 +28,23 @@ fn relative_error<const N: usize>(
     kind: Candidates,
     n: u64,
 ) -> f64 {
+    relative_error_at(extent, periodic, kind, 30, n)
+}
+
+/// [`relative_error`] with `k` attempts.
+fn relative_error_at<const N: usize>(
+    extent: [f64; N],
+    periodic: [bool; N],
+    kind: Candidates,
+    attempts: u32,
+    n: u64,
+) -> f64 {
     let domain = Domain::from_extent(extent)
         .expect("box")
         .with_periodic(periodic);
     let sampler = PoissonDisk::<N>::about_points(domain, n)
         .candidates(kind)
+        .attempts(attempts)
         .build()
         .expect("count mode builds");
     assert_eq!(sampler.requested_count(), Some(n), "the count is kept");
@@ -63,7 +75,7 @@ fn relative_error<const N: usize>(
     #[expect(clippy::cast_precision_loss, reason = "counts far below 2^53")]
     let error = (total as f64 / SEEDS as f64 - n as f64) / n as f64;
     println!(
-        "{N}-D {kind:?} {extent:?} {periodic:?} n = {n}: r = {:.6}, error {:+.2} %",
+        "{N}-D {kind:?} k = {attempts} {extent:?} {periodic:?} n = {n}: r = {:.6}, error {:+.2} %",
         sampler.radius(),
         100.0 * error
     );
@@ -117,6 +129,72 @@ fn three_dimensional_boxes_get_the_count_asked_for() {
             }
         }
     }
+}
+
+/// Count mode follows `k` in 2-D and 3-D (the density falls by about 20 %
+/// from `k = 30` to `k = 3` and rises by 11 % to 19 % at `k = 1000`): a
+/// few cases, seconds in a debug build; the whole grid is
+/// [`other_attempts_everywhere`].
+#[test]
+fn other_attempts_get_the_count_asked_for() {
+    let error = relative_error_at([1.0, 1.0], [false; 2], Candidates::Annulus, 10, 1000);
+    assert_within(error, "2-D annulus k = 10 bounded");
+    let error = relative_error_at([1.0; 3], [true; 3], Candidates::Sphere, 60, 1000);
+    assert_within(error, "3-D sphere k = 60 periodic");
+}
+
+/// [`other_attempts_get_the_count_asked_for`] over both kinds, k = 5, 10,
+/// 60, 100, bounded and periodic, a square and a 4 × 1 box in 2-D, a
+/// cube in 3-D.
+#[test]
+#[ignore = "48 runs of 4 seeds: half a minute in a debug build; .ci/run runs it optimised (--profile bench -- --ignored)"]
+fn other_attempts_everywhere() {
+    for kind in KINDS {
+        for k in [5, 10, 60, 100] {
+            for periodic in [[false; 2], [true; 2]] {
+                let error = relative_error_at([1.0, 1.0], periodic, kind, k, 1000);
+                assert_within(error, &format!("2-D {kind:?} k = {k} {periodic:?}"));
+                let error = relative_error_at([4.0, 1.0], periodic, kind, k, 2000);
+                assert_within(error, &format!("2-D 4 x 1 {kind:?} k = {k} {periodic:?}"));
+            }
+            for periodic in [[false; 3], [true; 3]] {
+                let error = relative_error_at([1.0; 3], periodic, kind, k, 1000);
+                assert_within(error, &format!("3-D {kind:?} k = {k} {periodic:?}"));
+            }
+        }
+    }
+}
+
+/// Outside `3 ..= 1000` attempts count mode refuses in 2-D and 3-D (no
+/// table), and keeps its k = 30 model elsewhere.
+#[test]
+fn attempts_outside_the_tables_are_errors_in_2d_and_3d() {
+    let square = Domain::from_extent([1.0, 1.0]).expect("box");
+    let cube = Domain::from_extent([1.0; 3]).expect("box");
+    let out_of_range = Err(Error::CountAttemptsOutOfRange { min: 3, max: 1000 });
+    for k in [1, 2, 1001, 65_536] {
+        let square = PoissonDisk::about_points(square, 1000).attempts(k).build();
+        assert_eq!(square.map(|s| s.radius()), out_of_range, "2-D k = {k}");
+        let cube = PoissonDisk::about_points(cube, 1000).attempts(k).build();
+        assert_eq!(cube.map(|s| s.radius()), out_of_range, "3-D k = {k}");
+    }
+    for k in [3, 1000] {
+        assert!(
+            PoissonDisk::about_points(square, 1000)
+                .attempts(k)
+                .build()
+                .is_ok(),
+            "k = {k}"
+        );
+    }
+    let four = Domain::from_extent([1.0; 4]).expect("box");
+    assert!(
+        PoissonDisk::about_points(four, 1000)
+            .attempts(2)
+            .build()
+            .is_ok(),
+        "4-D keeps the k = 30 model"
+    );
 }
 
 /// The radius is derived from the box: the same count in a box twice as

@@ -58,7 +58,9 @@ fn run_varying<const N: usize>(config: &Config, (r0, r1): (f64, f64)) -> Result<
     };
     let sampler = build::<N>(&config_max).map_err(Failure::Usage)?;
     let (lo, extent) = (sampler.domain().lo()[0], sampler.domain().extent()[0]);
-    let field = move |p: &[f64; N]| r0 + (r1 - r0) * (p[0] - lo) / extent;
+    // A multiplication per candidate, not a division.
+    let slope = (r1 - r0) / extent;
+    let field = move |p: &[f64; N]| r0 + slope * (p[0] - lo);
     let mut points = sampler
         .iter_varying(config.seed, r0.min(r1), field)
         .map_err(|e| Failure::Usage(e.to_string()))?;

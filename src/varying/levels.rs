@@ -1,0 +1,608 @@
+//! The main index of a varying radius: one dense grid per band of radii.
+//!
+//! Level `j` holds the points whose radius lies in `[t_j, t_j·√2)` (the
+//! last band up to `r_max`), on a grid of cells of side just under
+//! `t_j/√N`: its points are at least `t_j` apart, so a cell holds at most
+//! one, as in Bridson's grid, and a cell is a `u32` (the point's index
+//! plus one; 0 is empty). A coarse grid (cells of side `r_max`) keeps, for
+//! the 3^N cells around each, which levels hold a point there and the
+//! largest radius stored there: a candidate `c` of radius `r(c)` searches
+//! only those levels, level `j` out to `ρ = max(r(c), min(top_j, largest))`,
+//! which bounds `max(r(c), r(q))` for every point `q` of that level that
+//! could be too close. The search runs over a stencil of that radius (from
+//! a family of radii `t_j·2^(m/2)`, built on first use, cut by the part of
+//! the cell the candidate lies in, as in `grid/dense.rs`), with the
+//! rounding margin of the level's grid; near a face, over the whole box of
+//! cells within the reach, wrapping on periodic axes.
+//!
+//! With a smooth field, the points near a candidate share its level, so a
+//! search is about one stencil a little wider (at most `√2` in radius)
+//! than the fixed radius's. The levels' grids together take up to about
+//! three times as many cells as one grid at `r_min` would: allocated
+//! zeroed, a level's pages are touched only where its band of the field
+//! lies.
+
+use super::coarse::Coarse;
+use super::{Stored, too_close};
+use crate::domain::Domain;
+use crate::grid::dense::{Stencil, StencilShape, parts, stencil_bytes_per_cell};
+use crate::grid::rounding_margin;
+
+/// An empty cell.
+const EMPTY: u32 = 0;
+/// The ratio of a level's band of radii.
+const LEVEL_STEP: f64 = core::f64::consts::SQRT_2;
+/// The ratio between consecutive search radii of a level's stencils: `√2`,
+/// the band's own ratio, so that a search in its own band always takes the
+/// stencil of the band's top. Finer steps reach less far but make more
+/// distinct stencils, whose offsets then compete for the cache: `2^(1/4)`
+/// ran 5 % slower, `2^(1/8)` and `2^(1/16)` slower still (the journal).
+const STENCIL_STEP: f64 = core::f64::consts::SQRT_2;
+/// The largest `r_max / r_min` served (8 levels): past it the lowest
+/// levels' stencils, at up to `r_max` in cells of `r_min/√N`, grow as the
+/// ratio to the power `N`, and the lists ([`Lists`](super::lists::Lists))
+/// serve instead.
+pub(super) const MAX_RATIO: f64 = 16.0;
+/// The most dimensions served: past 4-D the stencils' windows grow too
+/// large (as for the fixed radius, which turns to a hash grid there).
+pub(super) const MAX_DIM: usize = 4;
+/// Cells gathered before their points are checked (as `grid/dense.rs`).
+const CHUNK: usize = 8;
+
+/// A stencil and the reach it was cut with.
+#[derive(Debug)]
+struct Built<const N: usize> {
+    stencil: Stencil,
+    reach: [usize; N],
+}
+
+/// One band of radii and its grid.
+#[derive(Debug)]
+struct Level<const N: usize> {
+    /// The smallest radius of the band, `t_j`.
+    floor: f64,
+    /// Every radius of the band is below this (or equal, for the last).
+    top: f64,
+    side: [f64; N],
+    inv_side: [f64; N],
+    /// Cells per axis in the box.
+    counts: [usize; N],
+    /// Empty cells past each face of a bounded axis (none on periodic
+    /// ones): the widest reach, so that a stencil never leaves the array.
+    pad: [usize; N],
+    /// Of the padded array.
+    stride: [usize; N],
+    eta: f64,
+    /// Per cell: the index of its point plus one, or [`EMPTY`].
+    cells: Vec<u32>,
+    /// The search radii of the stencils, rising, the last `>= r_max`.
+    radii: Vec<f64>,
+    /// Per (radius, part), `m·parts^N + part`: built on first use.
+    stencils: Vec<Option<Built<N>>>,
+}
+
+/// Parts per axis that a cell is cut into for the stencils.
+const PARTS: usize = parts(MAX_DIM);
+
+impl<const N: usize> Level<N> {
+    /// The level of band `[floor, top)` over `domain`, and the bound on
+    /// the bytes its stencils can take; `None` if the grid has too many
+    /// cells to index.
+    fn new(domain: &Domain<N>, floor: f64, top: f64, r_max: f64) -> Option<(Self, u64)> {
+        #[expect(clippy::cast_precision_loss, reason = "N is small")]
+        let max_side = floor / (N as f64).sqrt() * (1.0 - 1e-6);
+        let mut counts = [0usize; N];
+        let mut side = [0.0; N];
+        for ((count, s), e) in counts.iter_mut().zip(&mut side).zip(domain.extent()) {
+            let cells = (e / max_side).ceil();
+            // NaN (an infinite box) fails too.
+            if cells.is_nan() || cells > 2f64.powi(31) {
+                return None;
+            }
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "a whole number in 0..=2^31"
+            )]
+            let mut m = (cells as usize).max(1);
+            #[expect(clippy::cast_precision_loss, reason = "m <= 2^31 + 1")]
+            if e / m as f64 > max_side {
+                m += 1;
+            }
+            *count = m;
+            #[expect(clippy::cast_precision_loss, reason = "m <= 2^31 + 1")]
+            let width = e / m as f64;
+            *s = width;
+        }
+        #[expect(clippy::cast_precision_loss, reason = "a bound")]
+        let eta = rounding_margin(counts.iter().copied().max().unwrap_or(1) as f64);
+        let mut radii = vec![floor];
+        let mut r = floor;
+        while r < r_max {
+            r *= STENCIL_STEP;
+            radii.push(r);
+        }
+        let mut level = Self {
+            floor,
+            top,
+            side,
+            inv_side: side.map(|s| 1.0 / s),
+            counts,
+            pad: [0; N],
+            stride: [0; N],
+            eta,
+            cells: Vec::new(),
+            radii,
+            stencils: Vec::new(),
+        };
+        // The widest reach is the last radius's.
+        let widest = level.reach(r, &domain.periodic());
+        let mut total = 1usize;
+        let axes = counts.iter().zip(&widest).zip(domain.periodic());
+        for ((s, p), ((&m, &w), periodic)) in level.stride.iter_mut().zip(&mut level.pad).zip(axes)
+        {
+            *p = if periodic { 0 } else { w };
+            *s = total;
+            total = total.checked_mul(m.checked_add(p.checked_mul(2)?)?)?;
+        }
+        let parts_n = PARTS.pow(u32::try_from(N).ok()?);
+        let mut stencil_bytes = 0u64;
+        for &r in &level.radii {
+            let window: u64 = level
+                .reach(r, &domain.periodic())
+                .iter()
+                .map(|&p| u64::try_from(2 * p + 1).unwrap_or(u64::MAX))
+                .fold(1, u64::saturating_mul);
+            stencil_bytes =
+                stencil_bytes.saturating_add(window.saturating_mul(stencil_bytes_per_cell(N)));
+        }
+        level.stencils = (0..level.radii.len().checked_mul(parts_n)?)
+            .map(|_| None)
+            .collect();
+        let cells = u64::try_from(total).ok()?;
+        Some((level, stencil_bytes.saturating_add(cells.saturating_mul(4))))
+    }
+
+    /// Cells on each side that can hold a point closer than `r` to a point
+    /// of the centre cell, counting the rounding margin, up to what the
+    /// axis holds (every cell on a bounded axis, an image of every cell on
+    /// a periodic one).
+    fn reach(&self, r: f64, periodic: &[bool; N]) -> [usize; N] {
+        let mut reach = [0usize; N];
+        let axes = self.side.iter().zip(&self.counts).zip(periodic);
+        for (p, ((&s, &m), &periodic)) in reach.iter_mut().zip(axes) {
+            let needed = (r / s + self.eta).ceil();
+            let bound = if periodic { m } else { m - 1 };
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                clippy::cast_precision_loss,
+                reason = "compared with the bound (<= 2^31) before the cast"
+            )]
+            let cells = if needed < bound as f64 {
+                needed as usize
+            } else {
+                bound
+            };
+            *p = cells;
+        }
+        reach
+    }
+
+    /// The cell of a point of the box, and the part of it the point lies
+    /// in ([`PARTS`] per axis), as `Dense::locate`.
+    #[inline(always)]
+    fn locate(&self, p: &[f64; N], lo: &[f64; N]) -> ([usize; N], usize) {
+        let mut cell = [0usize; N];
+        let mut part = 0;
+        let mut weight = 1;
+        let axes = lo.iter().zip(&self.inv_side).zip(&self.counts);
+        for ((c, x), ((lo, inv_side), &m)) in cell.iter_mut().zip(p).zip(axes) {
+            let t = (x - lo) * inv_side;
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                clippy::cast_precision_loss,
+                reason = "saturating float-to-int casts, clamped; cells <= 2^31 convert exactly"
+            )]
+            let (i, k) = {
+                let i = ((t as i64).max(0) as usize).min(m - 1);
+                let k = (((t - i as f64) * PARTS as f64) as i64).clamp(0, PARTS as i64 - 1);
+                (i, k as usize)
+            };
+            *c = i;
+            part += k * weight;
+            weight *= PARTS;
+        }
+        (cell, part)
+    }
+
+    /// Builds the stencil of radius `radii[m]` for part `part`, unless
+    /// built already.
+    fn build(&mut self, m: usize, part: usize, periodic: &[bool; N]) {
+        let slot = m * PARTS.pow(u32::try_from(N).unwrap_or(0)) + part;
+        if !self.stencils.get(slot).is_some_and(Option::is_none) {
+            return;
+        }
+        let radius = self.radii.get(m).copied().unwrap_or(f64::INFINITY);
+        let reach = self.reach(radius, periodic);
+        let mut part_of = [0usize; N];
+        let mut rest = part;
+        for p in &mut part_of {
+            *p = rest % PARTS;
+            rest /= PARTS;
+        }
+        let shape = StencilShape {
+            reach,
+            side: self.side,
+            eta: self.eta,
+            radius,
+        };
+        let built = Stencil::new(&shape, &self.stride, &part_of, PARTS)
+            .map(|stencil| Built { stencil, reach });
+        if let Some(s) = self.stencils.get_mut(slot) {
+            *s = built;
+        }
+    }
+
+    /// The stencil of radius `radii[m]` for part `part`, if built.
+    fn stencil(&self, m: usize, part: usize) -> Option<&Built<N>> {
+        let slot = m * PARTS.pow(u32::try_from(N).unwrap_or(0)) + part;
+        self.stencils.get(slot)?.as_ref()
+    }
+
+    /// Whether a stencil of `reach` fits around `cell` without wrapping:
+    /// bounded axes are padded, periodic ones must not wrap.
+    fn fits(&self, cell: &[usize; N], reach: &[usize; N], periodic: &[bool; N]) -> bool {
+        cell.iter()
+            .zip(reach)
+            .zip(self.counts.iter().zip(periodic))
+            .all(|((&c, &p), (&m, &periodic))| !periodic || (c >= p && c + p < m))
+    }
+
+    /// The values of the occupied cells among `chunk` (at most
+    /// [`CHUNK`] offsets) around `base`, into `found`, without a branch
+    /// (most cells are empty); returns how many there were.
+    #[inline(always)]
+    fn occupied(&self, base: usize, chunk: &[isize], found: &mut [u32; CHUNK]) -> usize {
+        let mut n = 0;
+        for &off in chunk {
+            let v = self
+                .cells
+                .get(base.wrapping_add_signed(off))
+                .copied()
+                .unwrap_or(EMPTY);
+            if let Some(s) = found.get_mut(n) {
+                *s = v;
+            }
+            n += usize::from(v != EMPTY);
+        }
+        n
+    }
+
+    /// The index in the padded array of a cell of the box.
+    fn linear(&self, cell: &[usize; N]) -> usize {
+        cell.iter()
+            .zip(&self.pad)
+            .zip(&self.stride)
+            .map(|((c, p), s)| (c + p) * s)
+            .sum()
+    }
+}
+
+#[derive(Debug)]
+pub(super) struct Levels<const N: usize> {
+    coarse: Coarse<N>,
+    lo: [f64; N],
+    periodic: [bool; N],
+    /// Per coarse cell: bit `j` is set if a point of level `j` lies in
+    /// the 3^N cells around it.
+    masks: Vec<u32>,
+    /// Per coarse cell: the largest radius stored in the 3^N cells around
+    /// it (0 if none).
+    largest: Vec<f64>,
+    levels: Vec<Level<N>>,
+}
+
+impl<const N: usize> Levels<N> {
+    /// The index for radii `r_min ..= r_max` over `domain`, and the bytes
+    /// it can take (its cells and every stencil it may build); `None`
+    /// past [`MAX_RATIO`] or [`MAX_DIM`], if it needs more than `budget`
+    /// bytes, or if a level has too many cells.
+    pub(super) fn new(
+        coarse: Coarse<N>,
+        domain: &Domain<N>,
+        r_min: f64,
+        r_max: f64,
+        budget: u64,
+    ) -> Result<(Self, u64), Coarse<N>> {
+        if N == 0 || N > MAX_DIM || r_max > r_min * MAX_RATIO {
+            return Err(coarse);
+        }
+        let mut floors = vec![r_min];
+        let mut t = r_min;
+        while t * LEVEL_STEP < r_max {
+            t *= LEVEL_STEP;
+            floors.push(t);
+        }
+        let per_coarse = u64::try_from(size_of::<u32>() + size_of::<f64>()).unwrap_or(u64::MAX);
+        let mut bytes = u64::try_from(coarse.count())
+            .unwrap_or(u64::MAX)
+            .saturating_mul(per_coarse);
+        let mut levels = Vec::new();
+        for (j, &floor) in floors.iter().enumerate() {
+            let top = floors.get(j + 1).copied().unwrap_or(r_max);
+            let Some((level, needed)) = Level::new(domain, floor, top, r_max) else {
+                return Err(coarse);
+            };
+            bytes = bytes.saturating_add(needed);
+            levels.push(level);
+        }
+        if bytes > budget {
+            return Err(coarse);
+        }
+        for level in &mut levels {
+            let total = level
+                .counts
+                .iter()
+                .zip(&level.pad)
+                .map(|(m, p)| m + 2 * p)
+                .product();
+            // Zeroed memory: pages are touched only where the level's
+            // points are.
+            level.cells = vec![EMPTY; total];
+            // Before the first write, as the fixed radius's grid: fewer
+            // TLB misses over these large, sparsely read arrays.
+            crate::huge_pages::advise(&level.cells);
+        }
+        Ok((
+            Self {
+                masks: vec![0; coarse.count()],
+                largest: vec![0.0; coarse.count()],
+                coarse,
+                lo: domain.lo(),
+                periodic: domain.periodic(),
+                levels,
+            },
+            bytes,
+        ))
+    }
+
+    /// The level of radius `r`: the last whose floor is at most `r`.
+    #[inline(always)]
+    fn level_of(&self, r: f64) -> usize {
+        self.levels
+            .iter()
+            .skip(1)
+            .take_while(|l| l.floor <= r)
+            .count()
+    }
+
+    /// A stored point closer to `c` than `max(rc, its radius)`, if any.
+    #[inline]
+    pub(super) fn blocked(
+        &mut self,
+        points: &[Stored<N>],
+        periods: &[f64; N],
+        c: &[f64; N],
+        rc: f64,
+    ) -> Option<usize> {
+        let at = self.coarse.linear(&self.coarse.cell_of(c));
+        let mut mask = self.masks.get(at).copied().unwrap_or(u32::MAX);
+        let largest = self.largest.get(at).copied().unwrap_or(f64::INFINITY);
+        // Its own level first: the likeliest to hold a close point.
+        let own = self.level_of(rc);
+        let own_bit = 1u32
+            .checked_shl(u32::try_from(own).unwrap_or(u32::MAX))
+            .unwrap_or(0);
+        if mask & own_bit != 0 {
+            mask &= !own_bit;
+            if let Some(i) = self.search(own, points, periods, c, rc, largest) {
+                return Some(i);
+            }
+        }
+        while mask != 0 {
+            let j = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            if let Some(i) = self.search(j, points, periods, c, rc, largest) {
+                return Some(i);
+            }
+        }
+        None
+    }
+
+    /// A point of level `j` closer to `c` than `max(rc, its radius)`.
+    #[inline]
+    fn search(
+        &mut self,
+        j: usize,
+        points: &[Stored<N>],
+        periods: &[f64; N],
+        c: &[f64; N],
+        rc: f64,
+        largest: f64,
+    ) -> Option<usize> {
+        let (lo, periodic) = (self.lo, self.periodic);
+        let level = self.levels.get_mut(j)?;
+        // Every point of this level within the coarse cells around has a
+        // radius at most `min(top, largest)`.
+        let rho = rc.max(level.top.min(largest));
+        let m = level
+            .radii
+            .iter()
+            .position(|&r| r >= rho)
+            .unwrap_or(level.radii.len().saturating_sub(1));
+        let (cell, part) = level.locate(c, &lo);
+        level.build(m, part, &periodic);
+        let level = &*level;
+        let built = level.stencil(m, part)?;
+        if level.fits(&cell, &built.reach, &periodic) {
+            let base = level.linear(&cell);
+            let mut found = [EMPTY; CHUNK];
+            for chunk in built.stencil.offsets.chunks(CHUNK) {
+                let n = level.occupied(base, chunk, &mut found);
+                for &v in found.iter().take(n) {
+                    let i = v.wrapping_sub(1) as usize;
+                    if too_close(points, periods, c, rc, i) {
+                        return Some(i);
+                    }
+                }
+            }
+            return None;
+        }
+        // Near a face: every cell of the box of cells within the reach,
+        // wrapped on periodic axes, skipped past bounded faces.
+        let reach = built.reach;
+        let mut d = reach.map(|p| -isize::try_from(p).unwrap_or(0));
+        loop {
+            let mut at = 0usize;
+            let mut inside = true;
+            let axes = cell.iter().zip(&level.counts).zip(&level.stride);
+            for ((((&ci, &m), &s), &pad), (&di, &p)) in
+                axes.zip(&level.pad).zip(d.iter().zip(&periodic))
+            {
+                let (ci, m) = (
+                    isize::try_from(ci).unwrap_or(0),
+                    isize::try_from(m).unwrap_or(1),
+                );
+                let mut k = ci + di;
+                if p {
+                    k = k.rem_euclid(m);
+                } else if k < 0 || k >= m {
+                    inside = false;
+                    break;
+                }
+                at += (usize::try_from(k).unwrap_or(0) + pad) * s;
+            }
+            if inside {
+                let v = level.cells.get(at).copied().unwrap_or(EMPTY);
+                if v != EMPTY {
+                    let i = v.wrapping_sub(1) as usize;
+                    if too_close(points, periods, c, rc, i) {
+                        return Some(i);
+                    }
+                }
+            }
+            // Odometer over -reach..=reach on every axis.
+            let mut stepped = false;
+            for (x, &p) in d.iter_mut().zip(&reach) {
+                let p = isize::try_from(p).unwrap_or(0);
+                if *x < p {
+                    *x += 1;
+                    stepped = true;
+                    break;
+                }
+                *x = -p;
+            }
+            if !stepped {
+                return None;
+            }
+        }
+    }
+
+    /// The level of radius `r`, the cell of `p` in it (its index) and the
+    /// stencil of radius `r` (its band's top) around it, if that needs no
+    /// periodic wrap: where [`Self::seed`] and [`Self::prefetch`] look.
+    fn around(&mut self, p: &[f64; N], r: f64) -> Option<(&Level<N>, usize, &Built<N>)> {
+        let (lo, periodic) = (self.lo, self.periodic);
+        let j = self.level_of(r);
+        let level = self.levels.get_mut(j)?;
+        let m = level
+            .radii
+            .iter()
+            .position(|&x| x >= r)
+            .unwrap_or(level.radii.len().saturating_sub(1));
+        let (cell, part) = level.locate(p, &lo);
+        level.build(m, part, &periodic);
+        let level = &*level;
+        let built = level.stencil(m, part)?;
+        if !level.fits(&cell, &built.reach, &periodic) {
+            return None;
+        }
+        Some((level, level.linear(&cell), built))
+    }
+
+    /// Hands up to `limit` points of `p`'s level near `p` to `take`,
+    /// nearest cells first: those within about `r` (the stencil of its
+    /// band's top), where no periodic wrap is needed.
+    pub(super) fn seed(
+        &mut self,
+        points: &[Stored<N>],
+        p: &[f64; N],
+        r: f64,
+        limit: usize,
+        mut take: impl FnMut(&[f64; N]),
+    ) {
+        let Some((level, base, built)) = self.around(p, r) else {
+            return;
+        };
+        let mut left = limit;
+        let mut found = [EMPTY; CHUNK];
+        for chunk in built.stencil.offsets.chunks(CHUNK) {
+            let n = level.occupied(base, chunk, &mut found);
+            for &v in found.iter().take(n.min(left)) {
+                if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
+                    take(q);
+                }
+            }
+            left = left.saturating_sub(n);
+            if left == 0 {
+                return;
+            }
+        }
+    }
+
+    /// Starts loading the cells [`Self::seed`] will read around `p`, row
+    /// by row (up to 3-D); a hint only.
+    pub(super) fn prefetch(&mut self, p: &[f64; N], r: f64) {
+        if N > 3 {
+            return;
+        }
+        let Some((level, base, built)) = self.around(p, r) else {
+            return;
+        };
+        for &[first, last] in &built.stencil.rows {
+            crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(first));
+            crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(last));
+        }
+    }
+
+    /// Files point `index`, at `p` with radius `r`; `false` (and nothing
+    /// filed) if its cell is taken, which the rounding margin of the
+    /// cell side rules out, or the index does not fit.
+    pub(super) fn insert(&mut self, index: u32, p: &[f64; N], r: f64) -> bool {
+        let Some(value) = index.checked_add(1) else {
+            return false;
+        };
+        let j = self.level_of(r);
+        let lo = self.lo;
+        let Some(level) = self.levels.get_mut(j) else {
+            return false;
+        };
+        let (cell, _) = level.locate(p, &lo);
+        let at = level.linear(&cell);
+        match level.cells.get_mut(at) {
+            Some(slot) if *slot == EMPTY => *slot = value,
+            _ => return false,
+        }
+        let bit = 1u32
+            .checked_shl(u32::try_from(j).unwrap_or(u32::MAX))
+            .unwrap_or(0);
+        let Self {
+            coarse,
+            masks,
+            largest,
+            ..
+        } = self;
+        coarse.find_around(&coarse.cell_of(p), |k| {
+            if let Some(m) = masks.get_mut(k) {
+                *m |= bit;
+            }
+            if let Some(l) = largest.get_mut(k) {
+                *l = l.max(r);
+            }
+            None::<()>
+        });
+        true
+    }
+}

@@ -1,0 +1,528 @@
+//! A radius that varies with position ([`PoissonDisk::iter_varying`]): no
+//! two points `p`, `q` closer than `max(r(p), r(q))`.
+//!
+//! Bridson's loop as the fixed radius runs it (a pick drawn two ahead, a
+//! per-pick [`ConflictCache`] seeded with the parent's neighbours, annulus
+//! offsets drawn eight ahead), over an index of its own: points of
+//! different radii do not fit the fixed radius's grid of one point per cell
+//! of side `r/√N`.
+//!
+//! - [`Levels`] (`levels.rs`), the usual index: a dense grid per band of
+//!   radii (a factor √2), searched with stencils of `grid/dense.rs`.
+//! - [`Lists`] (`lists.rs`), the fallback when the bands' grids would not
+//!   fit the memory budget, past 4-D, or past `r_max / r_min = 16`: a
+//!   linked list per cell of side `r_max`, every point of the 3^N cells
+//!   around a candidate checked (slow where a cell holds many points).
+//! - `coarse.rs`: the grid of cells of side `r_max` both hang data on.
+//!
+//! Both find every point too close, and the loop's decisions are exact
+//! (`f64`, as the oracle), so the points do not depend on the index (a
+//! unit test compares them).
+
+mod coarse;
+mod levels;
+mod lists;
+
+use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
+use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
+use crate::domain::Domain;
+use crate::error::Error;
+use crate::random::{DefaultRng, below, seeded_rng, unit};
+use crate::sampler::{PoissonDisk, check_radius_and_attempts};
+use crate::vector::{add, periodic_distance_squared, scale, zip_map};
+use coarse::Coarse;
+use core::iter::FusedIterator;
+use levels::Levels;
+use lists::Lists;
+
+/// The conflict cache's radius, in units of the parent's (`r0 / r(p)`).
+const QUICK_RADIUS: f64 = 63.0 / 64.0;
+/// `r(p) / r0` as `f32` (exact: 64/63 rounds once, to within `2⁻²⁴`, which
+/// with the offset's own rounding keeps the quick test's input within
+/// `2⁻²⁰` of the candidate's position in units of `r0`).
+const QUICK_STRETCH: f32 = 64.0 / 63.0;
+
+/// A stored point and its radius, side by side.
+type Stored<const N: usize> = ([f64; N], f64);
+
+/// Heap bytes counted per point: the point and its radius, twice (the
+/// points and the active list), and its place in a cell list (the lists
+/// index), each with room for a vector's doubling.
+fn bytes_per_point<const N: usize>() -> u64 {
+    let n = u64::try_from(N).unwrap_or(u64::MAX);
+    2_u64.saturating_mul(n.saturating_mul(16).saturating_add(32))
+}
+
+/// Whether stored point `i` lies closer to `c` than `max(rc, r(i))`
+/// (squares summed in axis order, toroidal on axes with a period).
+#[inline(always)]
+fn too_close<const N: usize>(
+    points: &[Stored<N>],
+    periods: &[f64; N],
+    c: &[f64; N],
+    rc: f64,
+    i: usize,
+) -> bool {
+    let Some((q, rq)) = points.get(i) else {
+        return false;
+    };
+    let bound = rc.max(*rq);
+    periodic_distance_squared(c, q, periods) < bound * bound
+}
+
+/// Where the stored points are looked up. Either finds every point closer
+/// than the rule allows, so the points made do not depend on which is used.
+#[derive(Debug)]
+enum Index<const N: usize> {
+    Levels(Levels<N>),
+    Lists(Lists<N>),
+}
+
+impl<const N: usize> Index<N> {
+    fn blocked(
+        &mut self,
+        points: &[Stored<N>],
+        periods: &[f64; N],
+        c: &[f64; N],
+        rc: f64,
+    ) -> Option<usize> {
+        match self {
+            Self::Levels(l) => l.blocked(points, periods, c, rc),
+            Self::Lists(l) => l.blocked(points, periods, c, rc),
+        }
+    }
+
+    fn insert(&mut self, index: u32, p: &[f64; N], r: f64) -> bool {
+        match self {
+            Self::Levels(l) => l.insert(index, p, r),
+            Self::Lists(l) => l.insert(index, p),
+        }
+    }
+}
+
+/// What [`Varying::store`] did with a point.
+enum Filed {
+    Yes,
+    /// The index refused it: a failed attempt.
+    Taken,
+    /// Out of memory or indices: the run ends.
+    Stop,
+}
+
+/// The stream of a [`PoissonDisk::iter_varying`] run.
+#[derive(Debug)]
+pub struct Varying<const N: usize, F> {
+    rng: DefaultRng,
+    field: F,
+    domain: Domain<N>,
+    periods: [f64; N],
+    r_min: f64,
+    r_max: f64,
+    attempts: u32,
+    candidates: CandidateSampler<N>,
+    /// On-sphere candidates: moved out to `r(c)` where the field grows.
+    sphere: bool,
+    /// Annulus offsets drawn eight ahead (2-D and 3-D).
+    ahead: OffsetBatch<N>,
+    index: Index<N>,
+    points: Vec<Stored<N>>,
+    /// The active points, with their radii (copies: no indirection to
+    /// wait on).
+    active: Vec<Stored<N>>,
+    /// The next two picks, drawn ahead so that their memory is fetched
+    /// while earlier picks run (as the fixed radius's loop).
+    next_pick: [Option<usize>; 2],
+    remaining: u64,
+    budget: u64,
+    started: bool,
+    error: Option<Error>,
+}
+
+impl<const N: usize> PoissonDisk<N> {
+    /// Points whose spacing follows the radius field `field`: no two points
+    /// `p`, `q` closer than `max(r(p), r(q))` (squared distances summed in
+    /// axis order, toroidal on periodic axes, as for a fixed radius), every
+    /// point in the box, and no room left for another point to `k` attempts
+    /// around each. `r(x)` is `field(x)` clamped to `r_min ..= r_max`, where
+    /// `r_max` is this sampler's radius (NaN counts as `r_max`); annulus
+    /// candidates are thrown at `r(p) .. 2·r(p)` around a point `p`,
+    /// on-sphere ones at `r(p)`, moved out (up to 8 times) to `r(c)` where
+    /// the field is larger at the candidate `c`. The same seed and
+    /// field give the same points. The point cap and budget apply (the
+    /// budget on the grids allocated up front and an estimate of the bytes
+    /// per point); [`Builder::layout`](crate::Builder::layout) does not.
+    ///
+    /// The guarantee is symmetric, so it does not depend on which point
+    /// came first. Speed: up to 4-D and `r_max / r_min <= 16`, each band
+    /// of radii (a factor √2) gets a dense grid of its own, cells of side
+    /// `r_band/√N` (together up to about twice the cells of one grid at
+    /// `r_min`, 4 bytes each), when they fit the memory budget; a whole
+    /// `points --radius-range` run with `r_max / r_min = 4` (a linear field)
+    /// then took 1.8× the CPU time of a fixed radius making the same
+    /// number of points in 2-D (10⁶ points), 2.3× in 3-D (3·10⁵; 2.0× at
+    /// a ratio of 2); README has the figures.
+    /// Otherwise a slower index of lists per cell of side `r_max` serves,
+    /// with the same points.
+    ///
+    /// # Errors
+    /// [`Error::InvalidRadius`] if `r_min` is not a valid radius or is above
+    /// the sampler's radius; [`Error::BoxTooWide`] if the box spans more
+    /// than 2²⁰ cells of side `r_max` on some axis; [`Error::GridTooLarge`]
+    /// if not even the slower index's cells of side `r_max` (4 bytes each)
+    /// fit the memory budget.
+    ///
+    /// # Example: a radius growing from left to right
+    /// ```
+    /// use bridson::{Domain, PoissonDisk2};
+    /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.08)?;
+    /// let field = |p: &[f64; 2]| 0.02 + 0.06 * p[0];
+    /// let points: Vec<[f64; 2]> = sampler.iter_varying(3, 0.02, field)?.collect();
+    /// for (i, p) in points.iter().enumerate() {
+    ///     for q in &points[..i] {
+    ///         let d2 = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    ///         let r = field(p).max(field(q));
+    ///         assert!(d2 >= r * r);
+    ///     }
+    /// }
+    /// // Denser on the left, where the radius is small.
+    /// let left = points.iter().filter(|p| p[0] < 0.5).count();
+    /// assert!(left > 2 * (points.len() - left));
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    pub fn iter_varying<F: Fn(&[f64; N]) -> f64>(
+        &self,
+        seed: u64,
+        r_min: f64,
+        field: F,
+    ) -> Result<Varying<N, F>, Error> {
+        self.varying(seed, r_min, field, true)
+    }
+
+    /// [`Self::iter_varying`], on the lists if `levels` is false (tests
+    /// compare the two).
+    fn varying<F: Fn(&[f64; N]) -> f64>(
+        &self,
+        seed: u64,
+        r_min: f64,
+        field: F,
+        levels: bool,
+    ) -> Result<Varying<N, F>, Error> {
+        let r_max = self.radius();
+        check_radius_and_attempts(r_min, self.attempts())?;
+        if r_min > r_max {
+            return Err(Error::InvalidRadius);
+        }
+        let domain = *self.domain();
+        let budget = self.max_grid_bytes();
+        let coarse = Coarse::new(&domain, r_max).map_err(|e| match e {
+            Error::GridTooLarge { needed, .. } => Error::GridTooLarge { needed, budget },
+            e => e,
+        })?;
+        let levels = if levels {
+            Levels::new(coarse, &domain, r_min, r_max, budget)
+        } else {
+            Err(coarse)
+        };
+        let (index, needed) = match levels {
+            Ok((levels, needed)) => (Index::Levels(levels), needed),
+            Err(coarse) => {
+                // The lists' heads are allocated up front: they must fit.
+                let needed = u64::try_from(coarse.count())
+                    .ok()
+                    .and_then(|n| n.checked_mul(4))
+                    .unwrap_or(u64::MAX);
+                if needed > budget {
+                    return Err(Error::GridTooLarge { needed, budget });
+                }
+                (Index::Lists(Lists::new(coarse)), needed)
+            }
+        };
+        Ok(Varying {
+            rng: seeded_rng(seed),
+            field,
+            domain,
+            periods: zip_map(&domain.extent(), &domain.periodic(), |l, p| {
+                if p { l } else { 0.0 }
+            }),
+            r_min,
+            r_max,
+            attempts: self.attempts(),
+            candidates: CandidateSampler::new(self.candidates(), 1.0, self.attempts()),
+            sphere: self.candidates() == Candidates::Sphere,
+            ahead: OffsetBatch::new(),
+            index,
+            points: Vec::new(),
+            active: Vec::new(),
+            next_pick: [None; 2],
+            remaining: self.max_points().unwrap_or(u64::MAX),
+            budget: budget.saturating_sub(needed),
+            started: false,
+            error: None,
+        })
+    }
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
+    /// Why the stream ended early, if it did: as [`Iter::error`](crate::Iter::error).
+    pub fn error(&self) -> Option<Error> {
+        self.error
+    }
+
+    /// `r(p)`: the field clamped to `r_min ..= r_max`, NaN as `r_max`.
+    fn radius_at(&self, p: &[f64; N]) -> f64 {
+        let r = (self.field)(p);
+        if r.is_nan() {
+            self.r_max
+        } else {
+            r.clamp(self.r_min, self.r_max)
+        }
+    }
+
+    /// Stores `p` with radius `r`, if the estimated memory fits.
+    fn store(&mut self, p: [f64; N], r: f64) -> Filed {
+        let count = u64::try_from(self.points.len()).unwrap_or(u64::MAX);
+        if count
+            .saturating_add(1)
+            .saturating_mul(bytes_per_point::<N>())
+            > self.budget
+        {
+            self.error = Some(Error::MemoryBudgetExceeded {
+                points: count,
+                budget: self.budget,
+            });
+            self.active.clear();
+            return Filed::Stop;
+        }
+        let Ok(index) = u32::try_from(self.points.len()) else {
+            self.active.clear();
+            return Filed::Stop;
+        };
+        if !self.index.insert(index, &p, r) {
+            // Its cell taken (rounding, see the index): a failed attempt.
+            return Filed::Taken;
+        }
+        self.points.push((p, r));
+        self.active.push((p, r));
+        Filed::Yes
+    }
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
+    /// Up to `k` candidates around active entry `i`, keeping the first
+    /// that no stored point is too close to. The points that turn
+    /// candidates away, the parent and its nearest neighbours of its band
+    /// are remembered for the pick ([`ConflictCache`]) and checked first,
+    /// exactly (in `f64`, as the oracle), at the candidate's radius: a
+    /// point closer than `r(c)` is closer than `max(r(c), r(q))`. A
+    /// blocker only its own larger radius reaches is left to the index.
+    #[inline(always)]
+    fn pick<const B: usize>(&mut self, i: usize) -> Step<N> {
+        let Some(&(parent, rp)) = self.active.get(i) else {
+            return Step::Stop;
+        };
+        let periods = self.periods;
+        // The cache's quick test (`f32`, in units of its radius) says
+        // "closer than `r0`", which means too close only for candidates
+        // with `r(c) >= r0`: a little under `r(p)`, so that it serves
+        // nearly every candidate where the field is smooth; the others
+        // take its exact test at `r(c)`.
+        let r0 = rp * QUICK_RADIUS;
+        let mut cache = ConflictCache::<N, B>::new(parent, r0);
+        cache.push(&parent);
+        if let Index::Levels(levels) = &mut self.index {
+            levels.seed(&self.points, &parent, rp, B - 1, |q| cache.push(q));
+        }
+        // Far from every face, no candidate can leave the box (annulus
+        // candidates lie within 2·r(p)·(1 + 1e-7), on-sphere ones within
+        // r_max·(1 + 1e-7); the test keeps twice its reach).
+        let interior =
+            !self.domain.any_periodic() && self.domain.holds_ball(&parent, 2.0 * self.r_max);
+        let ahead = self.candidates.reads_ahead();
+        // Coordinates below 2²⁸·r0: the candidate is its offset from the
+        // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`).
+        let quick = ahead
+            && !self.domain.any_periodic()
+            && parent.iter().all(|x| x.abs() < r0 * NEAR_ORIGIN);
+        let mut state = if ahead {
+            [0.0; N]
+        } else {
+            self.candidates.start(&mut self.rng)
+        };
+        for _ in 0..self.attempts {
+            let (offset, unit) = if ahead {
+                self.ahead.next(&self.candidates, &mut self.rng)
+            } else {
+                (self.candidates.offset(&mut self.rng, &mut state), [0.0; N])
+            };
+            let mut c = add(&parent, &scale(&offset, rp));
+            if !interior && !self.domain.wrap(&mut c) {
+                continue;
+            }
+            let mut rc = self.radius_at(&c);
+            if self.sphere {
+                // Thrown at r(p), it is too close to its parent where
+                // the field grows: move it out along the same direction
+                // to r(c), a few times, as r(c) moves with it.
+                let mut at = rp;
+                for _ in 0..8 {
+                    if rc <= at {
+                        break;
+                    }
+                    at = rc;
+                    c = add(&parent, &scale(&offset, at));
+                    if !self.domain.wrap(&mut c) {
+                        break;
+                    }
+                    rc = self.radius_at(&c);
+                }
+                if !self.domain.contains(&c) {
+                    continue;
+                }
+            }
+            let blocked = if quick && rc >= r0 {
+                // The offset in units of r0: `unit` is in units of r(p).
+                cache.block_relative(&unit.map(|u| u * QUICK_STRETCH))
+            } else {
+                cache.block_periodic(&c, rc * rc, &periods)
+            };
+            if blocked {
+                continue;
+            }
+            if let Some(q) = self.index.blocked(&self.points, &periods, &c, rc) {
+                if let Some((q, _)) = self.points.get(q) {
+                    cache.push(q);
+                }
+                continue;
+            }
+            match self.store(c, rc) {
+                Filed::Yes => {
+                    self.remaining -= 1;
+                    return Step::Made(c);
+                }
+                Filed::Taken => {}
+                Filed::Stop => return Step::Stop,
+            }
+        }
+        Step::Retired
+    }
+}
+
+/// How a pick ended.
+enum Step<const N: usize> {
+    Made([f64; N]),
+    Retired,
+    Stop,
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
+    type Item = [f64; N];
+
+    fn next(&mut self) -> Option<[f64; N]> {
+        if self.remaining == 0 || self.error.is_some() {
+            return None;
+        }
+        if !self.started {
+            self.started = true;
+            let (lo, extent) = (self.domain.lo(), self.domain.extent());
+            let p = zip_map(&lo, &extent, |l, e| l + unit(&mut self.rng) * e);
+            if !self.domain.contains(&p) {
+                return None;
+            }
+            let r = self.radius_at(&p);
+            if !matches!(self.store(p, r), Filed::Yes) {
+                return None;
+            }
+            self.remaining -= 1;
+            return Some(p);
+        }
+        while !self.active.is_empty() {
+            let len = self.active.len();
+            // Each drawn uniform over `0..len + 2`, which bounds the list's
+            // length when it is used (a pick adds or removes one entry);
+            // kept if below the length then, redrawn otherwise: uniform
+            // over `0..len` either way.
+            let [now, soon] = self.next_pick;
+            let i = now
+                .filter(|&i| i < len)
+                .unwrap_or_else(|| below(&mut self.rng, len));
+            let later = below(&mut self.rng, len + 2);
+            self.next_pick = [soon, Some(later)];
+            crate::prefetch::prefetch(&self.active, later);
+            if let (Some(&(p, r)), Index::Levels(levels)) =
+                (soon.and_then(|j| self.active.get(j)), &mut self.index)
+            {
+                levels.prefetch(&p, r);
+            }
+            // A conflict cache sized for the dimension, as the fixed
+            // radius's: 8 slots in 2-D, 16 from 3-D up.
+            let step = if N <= 2 {
+                self.pick::<8>(i)
+            } else {
+                self.pick::<16>(i)
+            };
+            match step {
+                Step::Made(p) => return Some(p),
+                Step::Retired => {
+                    self.active.swap_remove(i);
+                }
+                Step::Stop => return None,
+            }
+        }
+        None
+    }
+}
+
+impl<const N: usize, F: Fn(&[f64; N]) -> f64> FusedIterator for Varying<N, F> {}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Domain, PoissonDisk};
+
+    /// The two indexes find the same conflicts, so they make the same
+    /// points, bit for bit, whatever the box, the field or the candidates.
+    fn same_points<const N: usize>(periodic: bool, sphere: bool, ratio: f64, seed: u64) {
+        let domain = Domain::from_extent([1.0; N])
+            .unwrap()
+            .with_periodic([periodic; N]);
+        let r_max = [0.0, 0.02, 0.06, 0.18, 0.35][N];
+        let kind = if sphere {
+            crate::Candidates::Sphere
+        } else {
+            crate::Candidates::Annulus
+        };
+        let sampler = PoissonDisk::builder(domain, r_max)
+            .candidates(kind)
+            .build()
+            .unwrap();
+        let r_min = r_max / ratio;
+        // A wave: the radius changes direction, so levels meet in places.
+        let field = |p: &[f64; N]| {
+            let t = p.iter().sum::<f64>() * 3.0;
+            r_min + (r_max - r_min) * (t - t.floor())
+        };
+        let on_levels = sampler.varying(seed, r_min, field, true).unwrap();
+        assert!(matches!(on_levels.index, super::Index::Levels(_)), "{N}-D");
+        let levels: Vec<_> = on_levels.collect();
+        let lists: Vec<_> = sampler
+            .varying(seed, r_min, field, false)
+            .unwrap()
+            .collect();
+        assert!(levels.len() > 20, "{N}-D: {} points", levels.len());
+        assert_eq!(levels, lists, "{N}-D periodic {periodic} sphere {sphere}");
+    }
+
+    #[test]
+    fn levels_and_lists_make_the_same_points() {
+        for (i, (periodic, sphere)) in [(false, false), (true, false), (false, true), (true, true)]
+            .into_iter()
+            .enumerate()
+        {
+            let seed = u64::try_from(i).unwrap();
+            same_points::<1>(periodic, sphere, 4.0, seed);
+            same_points::<2>(periodic, sphere, 4.0, seed);
+            same_points::<2>(periodic, sphere, 1.5, seed);
+            same_points::<3>(periodic, sphere, 3.0, seed);
+            same_points::<4>(periodic, sphere, 2.0, seed);
+        }
+    }
+}
