@@ -174,32 +174,7 @@ impl<const N: usize> Dense<N> {
     /// cell, so off by no more than the rounding margin the stencils allow.
     #[inline(always)]
     fn locate(&self, p: &[f64; N]) -> ([usize; N], usize) {
-        let mut cell = [0usize; N];
-        let mut part = 0;
-        let mut weight = 1;
-        let axes = self.lo.iter().zip(&self.inv_side).zip(&self.last);
-        for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
-            let t = (x - lo) * inv_side;
-            // The cell through i64 (one instruction on x86-64; f64 -> usize
-            // takes several), saturating, then clamped into the grid; then
-            // the position inside the cell, clamped (rounding or the clamp
-            // at `hi` can leave it a hair outside).
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                clippy::cast_precision_loss,
-                reason = "saturating float-to-int casts, clamped; cells <= 2^40 convert exactly"
-            )]
-            let (i, k) = {
-                let i = ((t as i64).max(0) as usize).min(last);
-                let k = (((t - i as f64) * parts(N) as f64) as i64).clamp(0, parts(N) as i64 - 1);
-                (i, k as usize)
-            };
-            *c = i;
-            part += k * weight;
-            weight *= parts(N);
-        }
-        (cell, part)
+        locate(p, &self.lo, &self.inv_side, &self.last, parts(N))
     }
 
     /// Asks for the cells of `stencil` around cell `base`, row by row: the
@@ -410,6 +385,48 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
         true
     }
+}
+
+/// The cell of `p` in a grid whose cells start at `lo`, are `1/inv_side`
+/// wide and run to `last` per axis (clamped into it), and which of
+/// `parts` equal slices per axis of that cell it lies in, numbered axis 0
+/// first: what a part stencil is chosen by. Shared by [`Dense`] and the
+/// varying radius's band grids.
+#[inline(always)]
+pub(crate) fn locate<const N: usize>(
+    p: &[f64; N],
+    lo: &[f64; N],
+    inv_side: &[f64; N],
+    last: &[usize; N],
+    parts: usize,
+) -> ([usize; N], usize) {
+    let mut cell = [0usize; N];
+    let mut part = 0;
+    let mut weight = 1;
+    let axes = lo.iter().zip(inv_side).zip(last);
+    for ((c, x), ((lo, inv_side), &last)) in cell.iter_mut().zip(p).zip(axes) {
+        let t = (x - lo) * inv_side;
+        // The cell through i64 (one instruction on x86-64; f64 -> usize
+        // takes several), saturating, then clamped into the grid; then
+        // the position inside the cell, clamped (rounding or the clamp
+        // at `hi` can leave it a hair outside).
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            clippy::cast_precision_loss,
+            clippy::cast_possible_wrap,
+            reason = "saturating float-to-int casts, clamped; cells <= 2^40 convert exactly; parts is a few"
+        )]
+        let (i, k) = {
+            let i = ((t as i64).max(0) as usize).min(last);
+            let k = (((t - i as f64) * parts as f64) as i64).clamp(0, parts as i64 - 1);
+            (i, k as usize)
+        };
+        *c = i;
+        part += k * weight;
+        weight *= parts;
+    }
+    (cell, part)
 }
 
 /// How many parts each axis of a cell is cut into for the search stencils,

@@ -25,7 +25,7 @@
 use super::coarse::Coarse;
 use super::{Stored, too_close};
 use crate::domain::Domain;
-use crate::grid::dense::{Stencil, StencilShape, parts, stencil_bytes_per_cell};
+use crate::grid::dense::{Stencil, StencilShape, locate, parts, stencil_bytes_per_cell};
 use crate::grid::rounding_margin;
 
 /// An empty cell.
@@ -193,28 +193,8 @@ impl<const N: usize> Level<N> {
     /// in ([`PARTS`] per axis), as `Dense::locate`.
     #[inline(always)]
     fn locate(&self, p: &[f64; N], lo: &[f64; N]) -> ([usize; N], usize) {
-        let mut cell = [0usize; N];
-        let mut part = 0;
-        let mut weight = 1;
-        let axes = lo.iter().zip(&self.inv_side).zip(&self.counts);
-        for ((c, x), ((lo, inv_side), &m)) in cell.iter_mut().zip(p).zip(axes) {
-            let t = (x - lo) * inv_side;
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                clippy::cast_precision_loss,
-                reason = "saturating float-to-int casts, clamped; cells <= 2^31 convert exactly"
-            )]
-            let (i, k) = {
-                let i = ((t as i64).max(0) as usize).min(m - 1);
-                let k = (((t - i as f64) * PARTS as f64) as i64).clamp(0, PARTS as i64 - 1);
-                (i, k as usize)
-            };
-            *c = i;
-            part += k * weight;
-            weight *= PARTS;
-        }
-        (cell, part)
+        let last = self.counts.map(|m| m.saturating_sub(1));
+        locate(p, lo, &self.inv_side, &last, PARTS)
     }
 
     /// Builds the stencil of radius `radii[m]` for part `part`, unless
