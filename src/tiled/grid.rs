@@ -15,7 +15,7 @@
 //! reaches its end, the live rows are copied back to its start. That costs
 //! one row copy per row of the image, amortised.
 
-use crate::grid::dense::{Stencil, StencilShape, parts};
+use crate::grid::dense::{Stencil, StencilShape, locate, parts};
 use crate::vector::distance_squared;
 
 /// An empty cell: a point at infinity, so the scan never branches on
@@ -184,24 +184,10 @@ impl RollingGrid {
     /// cell it lies in.
     #[inline(always)]
     fn locate(&self, p: &[f64; 2]) -> (usize, usize, usize) {
-        let axis = |v: f64, last: usize| {
-            let t = v * self.inv_side;
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                clippy::cast_precision_loss,
-                reason = "saturating casts of non-negative values, clamped; cells < 2^53"
-            )]
-            let (i, k) = {
-                let i = ((t as i64).max(0) as usize).min(last);
-                let k = (((t - i as f64) * 2.0) as i64).clamp(0, 1);
-                (i, k as usize)
-            };
-            (i, k)
-        };
-        let (cx, kx) = axis(p[0], self.cells_x - 1);
-        let (cy, ky) = axis(p[1], self.cells_y - 1);
-        (cx, cy, kx + 2 * ky)
+        let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
+        let inv_side = [self.inv_side; 2];
+        let ([cx, cy], part) = locate(p, &[0.0; 2], &inv_side, &last, parts(2));
+        (cx, cy, part)
     }
 
     /// A stored point closer than `r` to `p` (inside the raster, in a row
