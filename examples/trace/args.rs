@@ -21,8 +21,10 @@ Scenes: figure (a seated figure of analytic primitives under a quad light),
 dof (thin lens, large aperture), checker (infinite checkerboard, pinhole,
 unlit), motion (a moving sphere).
 
-Samplers: poisson-pixel, poisson-exact, independent, stratified,
-best-candidate, low-discrepancy, sobol-owen (exact counts), and
+Samplers: poisson-pixel, poisson-exact (a 1x1 exact-mode stream per
+pixel), independent, stratified, best-candidate, low-discrepancy, sobol-owen,
+poisson-exact-eliminate, poisson-exact-random (exact mode streamed over the
+whole image, ExactMethod::Eliminate or Random) (exact counts), and
 poisson-sweep (the crate's sweep, natural counts), poisson-joint (one 5-D
 Poisson set per pixel over film, time and lens, natural counts),
 poisson-paper (the paper as published: Scheme::Paper at r = sqrt(8/(5 pi N)),
@@ -52,7 +54,7 @@ pub(crate) struct Args {
     /// Scenes to render [default: figure,dof,checker,motion]
     #[arg(long, value_name = "A,B,..", value_parser = scene_list)]
     pub(crate) scene: Option<List<String>>,
-    /// Samplers to compare [default: all ten]
+    /// Samplers to compare [default: all twelve]
     #[arg(long, value_name = "A,B,..", value_parser = sampler_list)]
     pub(crate) sampler: Option<List<String>>,
     /// Samples per pixel, each 1 to 4096
@@ -166,7 +168,7 @@ mod tests {
     fn defaults_and_lists() {
         let args: Args = parse_line("trace", "").expect("no flags");
         assert_eq!(args.scenes(), SCENES, "every scene");
-        assert_eq!(args.samplers().len(), 10, "every sampler");
+        assert_eq!(args.samplers().len(), 12, "every sampler");
         assert_eq!(args.spp, [4, 16, 64], "spp");
         assert_eq!(args.size, [128, 128], "size");
         assert_eq!(

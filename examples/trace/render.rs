@@ -141,7 +141,7 @@ mod tests {
 
     /// The same seed gives bit-identical images at 1 and 2 threads, for
     /// samplers of every kind: a trait sampler, the streamed sweep, the
-    /// paper's scheme and the joint sets.
+    /// streamed exact mode, the paper's scheme and the joint sets.
     #[test]
     fn images_do_not_depend_on_the_thread_count() {
         for scene_name in SCENES {
@@ -149,6 +149,7 @@ mod tests {
             for name in [
                 "poisson-pixel",
                 "poisson-sweep",
+                "poisson-exact-random",
                 "poisson-paper",
                 "poisson-joint",
             ] {

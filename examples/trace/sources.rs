@@ -1,17 +1,21 @@
 //! Where each render's samples come from: every sampler of
 //! `common::samplers` through the crate's [`PixelSampler`] trait (exactly
-//! `spp` per pixel), and three Poisson schemes whose counts vary from pixel
-//! to pixel: `poisson-sweep` (the crate's streaming sweep, natural counts,
-//! as [`CameraPixels`] gives them), `poisson-joint` (one 5-D set per pixel
-//! over film, time and lens) and `poisson-paper` (the paper as published).
+//! `spp` per pixel); the crate's exact mode streamed over the whole image
+//! as a renderer would run it ([`CameraPixels`] over
+//! `Tiled::builder(w, h).exact(spp)`, one sampler per [`ExactMethod`]:
+//! exactly `spp` per pixel too); and three Poisson schemes whose counts
+//! vary from pixel to pixel: `poisson-sweep` (the crate's streaming sweep,
+//! natural counts, as [`CameraPixels`] gives them), `poisson-joint` (one
+//! 5-D set per pixel over film, time and lens) and `poisson-paper` (the
+//! paper as published).
 //!
 //! A sample is what the tracer consumes: the camera's values and one 2-D
 //! light sample, the sampler's next dimension pair after the camera's.
 
 use crate::common::samplers::{self, hash};
 use bridson::{
-    CameraPixels, CameraSample, Domain, PixelSampler, PoissonDisk, PoissonPixelSampler, Scheme,
-    Tiled,
+    CameraPixels, CameraSample, Domain, ExactMethod, PixelSampler, PoissonDisk,
+    PoissonPixelSampler, Scheme, Tiled,
 };
 use std::f64::consts::PI;
 
@@ -22,13 +26,38 @@ pub(crate) struct Sample {
     pub(crate) light: [f64; 2],
 }
 
+/// The crate's exact mode streamed over the whole image, one sampler per
+/// [`ExactMethod`], after those of [`samplers::NAMES`]. Unlike
+/// `poisson-exact` there (one `1 × 1` stream per pixel, so that pixels are
+/// independent trials for the convergence study), the film points of
+/// neighbouring pixels keep their distance from each other, as in a
+/// renderer's [`CameraPixels`]; and the method is chosen, so the study can
+/// judge the two.
+pub(crate) const EXACT_STREAMED: [(&str, ExactMethod); 2] = [
+    ("poisson-exact-eliminate", ExactMethod::Eliminate),
+    ("poisson-exact-random", ExactMethod::Random),
+];
+
 /// The samplers whose counts are natural, not exact, after those of
-/// [`samplers::NAMES`].
+/// [`EXACT_STREAMED`].
 pub(crate) const NATURAL: [&str; 3] = ["poisson-sweep", "poisson-joint", "poisson-paper"];
 
 /// Every name `--sampler` accepts, in the study's order.
 pub(crate) fn names() -> Vec<&'static str> {
-    samplers::NAMES.iter().chain(&NATURAL).copied().collect()
+    samplers::NAMES
+        .iter()
+        .copied()
+        .chain(EXACT_STREAMED.iter().map(|&(name, _)| name))
+        .chain(NATURAL)
+        .collect()
+}
+
+/// The exact method of an [`EXACT_STREAMED`] sampler.
+fn exact_method(name: &str) -> Option<ExactMethod> {
+    EXACT_STREAMED
+        .iter()
+        .find(|&&(n, _)| n == name)
+        .map(|&(_, method)| method)
 }
 
 /// The dimension of the light sample in a [`PixelSampler`]: after time
@@ -61,11 +90,10 @@ impl Recipe {
                 names().join(", ")
             ));
         }
-        if name != "poisson-joint" && !NATURAL.contains(&name) {
+        if samplers::NAMES.contains(&name) {
             // Fail now, not in a render thread.
             samplers::by_name(name, spp, seed)?;
-        }
-        if NATURAL.contains(&name) && !(1..=bridson::MAX_SAMPLES_PER_PIXEL).contains(&spp) {
+        } else if !(1..=bridson::MAX_SAMPLES_PER_PIXEL).contains(&spp) {
             return Err(format!(
                 "{name}: --spp must be from 1 to {}",
                 bridson::MAX_SAMPLES_PER_PIXEL
@@ -92,15 +120,19 @@ impl Recipe {
     /// A message if the stream cannot be built.
     pub(crate) fn film_stream(&self) -> Result<Option<FilmStream>, String> {
         let [w, h] = self.size;
-        let n = f64::from(self.spp);
         let err = |e: bridson::Error| format!("{}: {e}", self.name);
+        let camera = |builder: bridson::TiledBuilder| {
+            let tiled = builder.build().map_err(err)?;
+            CameraPixels::new(&tiled, self.seed, 0)
+                .map(FilmStream::Sweep)
+                .map_err(err)
+        };
+        if let Some(method) = exact_method(&self.name) {
+            let builder = Tiled::builder(w, h).exact(self.spp).exact_method(method);
+            return camera(builder).map(Some);
+        }
         Ok(match self.name.as_str() {
-            "poisson-sweep" => {
-                let tiled = Tiled::builder(w, h).per_pixel(n).build().map_err(err)?;
-                Some(FilmStream::Sweep(
-                    CameraPixels::new(&tiled, self.seed, 0).map_err(err)?,
-                ))
-            }
+            "poisson-sweep" => Some(camera(Tiled::builder(w, h).per_pixel(f64::from(self.spp)))?),
             "poisson-paper" => {
                 let tiled = Tiled::builder(w, h)
                     .radius(paper_radius(self.spp))
@@ -118,10 +150,10 @@ impl Recipe {
     /// # Errors
     /// A message if the sampler cannot be built.
     pub(crate) fn filler(&self) -> Result<PixelFiller, String> {
-        let sampler = if NATURAL.contains(&self.name.as_str()) {
-            None
-        } else {
+        let sampler = if samplers::NAMES.contains(&self.name.as_str()) {
             Some(samplers::by_name(&self.name, self.spp, self.seed)?)
+        } else {
+            None
         };
         Ok(PixelFiller {
             recipe: self.clone(),
@@ -168,11 +200,12 @@ fn joint_radius(spp: u32) -> Result<f64, String> {
     Ok(radius)
 }
 
-/// The film stream of `poisson-sweep` or `poisson-paper`: pixels in scan
-/// order.
+/// The film stream of `poisson-sweep`, the [`EXACT_STREAMED`] samplers or
+/// `poisson-paper`: pixels in scan order.
 #[derive(Debug)]
 pub(crate) enum FilmStream {
-    /// The crate's camera samples in streaming form (film, time, lens).
+    /// The crate's camera samples in streaming form (film, time, lens), of
+    /// the natural sweep or of exact mode.
     Sweep(CameraPixels),
     /// Film points only; the rest is drawn per pixel by the filler.
     Paper(bridson::Pixels<bridson::DefaultRng>),
@@ -214,8 +247,9 @@ pub(crate) struct PixelFiller {
     recipe: Recipe,
     /// The trait sampler, for the exact-count samplers.
     sampler: Option<Box<dyn PixelSampler>>,
-    /// `poisson-sweep` and `poisson-joint`: a Poisson pixel sampler per
-    /// sample count met (index = count), for the light dimensions.
+    /// `poisson-sweep`, `poisson-joint` and the [`EXACT_STREAMED`]
+    /// samplers: a Poisson pixel sampler per sample count met (index =
+    /// count), for the light dimensions.
     by_count: Vec<Option<PoissonPixelSampler>>,
 }
 
@@ -255,7 +289,10 @@ impl PixelFiller {
             u64::from(pixel[1]),
         ]);
         match self.recipe.name.as_str() {
-            "poisson-sweep" => self.add_light(pixel, out),
+            // The streamed film, time and lens are in `out` already.
+            name if name == "poisson-sweep" || exact_method(name).is_some() => {
+                self.add_light(pixel, out);
+            }
             "poisson-joint" => {
                 out.clear();
                 let points = PoissonDisk::new(
@@ -403,5 +440,48 @@ mod tests {
             }
         }
         assert!(Recipe::new("nope", 4, 1, [2, 2]).is_err(), "unknown name");
+    }
+
+    /// The streamed exact samplers draw one set over the whole image, as a
+    /// renderer's `CameraPixels` does, not a set per pixel: film points of
+    /// neighbouring pixels keep the stream's radius from each other (sets
+    /// drawn pixel by pixel would not, at this density), each pixel has
+    /// exactly `spp`, and the method is passed on (the two films differ).
+    #[test]
+    fn exact_streams_are_one_set_across_pixel_borders() {
+        let ([w, h], spp) = ([6, 5], 4);
+        let mut films = Vec::new();
+        for (name, method) in EXACT_STREAMED {
+            let recipe = Recipe::new(name, spp, 11, [w, h]).expect("builds");
+            let mut stream = recipe.film_stream().expect("builds").expect("streamed");
+            let mut out = Vec::new();
+            let mut film = Vec::new();
+            while let Some([x, y]) = stream.next_into(&mut out) {
+                assert_eq!(out.len(), spp as usize, "{name}: exact count");
+                let c = |i: u32, f: f64| f64::from(i) + f;
+                film.extend(
+                    out.iter()
+                        .map(|s| [c(x, s.camera.film[0]), c(y, s.camera.film[1])]),
+                );
+            }
+            assert_eq!(film.len(), (w * h * spp) as usize, "{name}: every pixel");
+            let radius = Tiled::builder(w, h)
+                .exact(spp)
+                .exact_method(method)
+                .build()
+                .expect("builds")
+                .radius();
+            for (i, a) in film.iter().enumerate() {
+                for b in &film[..i] {
+                    let d = (a[0] - b[0]).hypot(a[1] - b[1]);
+                    assert!(
+                        d >= radius,
+                        "{name}: {a:?} and {b:?} are {d} < {radius} apart"
+                    );
+                }
+            }
+            films.push(film);
+        }
+        assert_ne!(films[0], films[1], "the methods differ");
     }
 }

@@ -340,7 +340,7 @@ mod headline {
     use super::*;
 
     #[test]
-    #[ignore = "renders a reference and 4 x 6 images: seconds optimised, slow in a debug build"]
+    #[ignore = "renders a reference and 6 x 6 images: seconds optimised, slow in a debug build"]
     fn poisson_beats_independent_on_the_checkerboard_at_16() {
         let size = [32, 32];
         let scene = Scene::by_name("checker", size).expect("known");
@@ -362,7 +362,12 @@ mod headline {
         };
         let independent = run("independent");
         let base = independent.errors.expect("a reference");
-        for name in ["poisson-pixel", "poisson-exact"] {
+        for name in [
+            "poisson-pixel",
+            "poisson-exact",
+            "poisson-exact-eliminate",
+            "poisson-exact-random",
+        ] {
             let row = run(name);
             let e = row.errors.expect("a reference");
             // The standard error of each mean RMSE over the 6 seeds.
