@@ -126,3 +126,39 @@ fn a_radius_too_small_for_the_pixel_sampler_is_an_error() {
         Err(Error::InvalidSamplesPerPixel { .. })
     ));
 }
+
+/// Exact mode's radius shrinks with `n`: at `n = 2000` a pixel could hold
+/// more than 4096 points at that radius, but holds exactly 2000, which the
+/// pixel sampler supports. Past 4096 the count asked for is the error.
+#[test]
+fn exact_counts_up_to_the_pixel_samplers_limit_stream() {
+    let tiled = Tiled::builder(1, 1).exact(2000).build().expect("valid");
+    let per_side = (std::f64::consts::SQRT_2 / tiled.radius()).floor() + 1.0;
+    assert!(
+        per_side * per_side > 4096.0,
+        "the radius alone would refuse it: r = {}, {per_side}",
+        tiled.radius()
+    );
+    let pixels: Vec<_> = CameraPixels::new(&tiled, 3, 1)
+        .expect("2000 a pixel is supported")
+        .collect();
+    assert_eq!(pixels.len(), 1);
+    for pixel in &pixels {
+        assert_eq!(
+            pixel.samples.len(),
+            2000,
+            "pixel ({}, {})",
+            pixel.x,
+            pixel.y
+        );
+        assert_eq!(pixel.extra.len(), 2000);
+    }
+    let over = Tiled::builder(1, 1).exact(5000).build().expect("valid");
+    assert_eq!(
+        CameraPixels::new(&over, 3, 0).err(),
+        Some(Error::InvalidSamplesPerPixel {
+            spp: 5000,
+            max: 4096
+        })
+    );
+}

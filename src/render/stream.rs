@@ -77,12 +77,21 @@ impl CameraPixels {
     /// # Errors
     /// [`Error::InvalidSamplesPerPixel`] if a pixel of `tiled` could hold
     /// more film points than [`PoissonPixelSampler`] supports
-    /// ([`MAX_SAMPLES_PER_PIXEL`]): a radius below about `0.022` pixels.
+    /// ([`MAX_SAMPLES_PER_PIXEL`]): in exact mode, more than that many
+    /// points a pixel (`spp` is then the count asked for); with natural
+    /// counts, a radius below about `0.022` pixels (`spp` is then the most
+    /// points a pixel could hold at that radius).
     pub fn new(tiled: &Tiled, seed: u64, extra_dims: u32) -> Result<Self, Error> {
-        // Points at least r apart in a unit square: at most one per cell
-        // of side r/√2, so (⌊√2/r⌋ + 1)² of them.
-        let per_side = (core::f64::consts::SQRT_2 / tiled.radius()).floor() + 1.0;
-        let most = per_side * per_side;
+        // Exact mode: the count itself. Natural counts: points at least r
+        // apart in a unit square are at most one per cell of side r/√2, so
+        // (⌊√2/r⌋ + 1)² of them.
+        let most = tiled.exact().map_or_else(
+            || {
+                let per_side = (core::f64::consts::SQRT_2 / tiled.radius()).floor() + 1.0;
+                per_side * per_side
+            },
+            f64::from,
+        );
         if most > f64::from(MAX_SAMPLES_PER_PIXEL) {
             #[expect(
                 clippy::cast_possible_truncation,

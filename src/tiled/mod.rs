@@ -382,6 +382,12 @@ impl Tiled {
         self.settings.scheme
     }
 
+    /// In exact mode ([`TiledBuilder::exact`]), the number of points every
+    /// pixel holds; `None` for natural counts.
+    pub fn exact(&self) -> Option<u32> {
+        self.settings.exact
+    }
+
     /// Bytes of the rolling window (the grid, which holds the sweep's
     /// points, per-pixel counts, and for the paper's scheme and exact mode
     /// the per-pixel lists' headers, not their points): proportional to
