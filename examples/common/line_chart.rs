@@ -90,15 +90,6 @@ impl LineChart {
                     * f64_of(plot.y1 - plot.y0)
         };
 
-        // Title, centred.
-        let (title_width, _) = Canvas::text_size(&self.title, TEXT);
-        canvas.text(
-            (i64::from(width) - title_width) / 2,
-            12,
-            &self.title,
-            TEXT,
-            BLACK,
-        );
         // Grid lines and ticks with their labels.
         for &x in &x_ticks {
             let px = floor_i64(map_x(x));
@@ -116,17 +107,6 @@ impl LineChart {
             let (w, h) = Canvas::text_size(&label, TEXT);
             canvas.text(plot.x0 - 8 - w, py - h / 2, &label, TEXT, BLACK);
         }
-        // Axis labels.
-        let (w, _) = Canvas::text_size(&self.x_label, TEXT);
-        canvas.text(
-            (plot.x0 + plot.x1 - w) / 2,
-            plot.y1 + 8 + line_height + 8,
-            &self.x_label,
-            TEXT,
-            BLACK,
-        );
-        let (w, _) = Canvas::text_size(&self.y_label, TEXT);
-        canvas.text_up(12, (plot.y0 + plot.y1 - w) / 2, &self.y_label, TEXT, BLACK);
         // Reference lines, dashed, named in a legend row under the title:
         // a short sample of each line, then its name.
         const SAMPLE: i64 = 24;
@@ -160,15 +140,9 @@ impl LineChart {
                 .collect();
             canvas.polyline(&points, 2.0, s.colour, plot);
         }
-        canvas.outline(
-            Rect {
-                x0: plot.x0 - 1,
-                y0: plot.y0 - 1,
-                x1: plot.x1 + 1,
-                y1: plot.y1 + 1,
-            },
-            BLACK,
-        );
+        // Title, axis labels and outline (outside the plot area, so drawn
+        // last without covering anything).
+        canvas.chart_frame(plot, [&self.title, &self.x_label, &self.y_label], TEXT);
         canvas
     }
 }

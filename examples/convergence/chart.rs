@@ -127,14 +127,6 @@ impl LogLogChart {
             ]
         };
 
-        let (title_width, _) = Canvas::text_size(&self.title, TEXT);
-        canvas.text(
-            (i64::from(width) - title_width) / 2,
-            12,
-            &self.title,
-            TEXT,
-            BLACK,
-        );
         // Decades: grid lines, ticks and labels (every other y decade when
         // there are many).
         let mut e = x_range[0];
@@ -164,16 +156,6 @@ impl LogLogChart {
             }
             e += 1.0;
         }
-        let (w, _) = Canvas::text_size(&self.x_label, TEXT);
-        canvas.text(
-            (plot.x0 + plot.x1 - w) / 2,
-            plot.y1 + 8 + line_height + 8,
-            &self.x_label,
-            TEXT,
-            BLACK,
-        );
-        let (w, _) = Canvas::text_size(&self.y_label, TEXT);
-        canvas.text_up(12, (plot.y0 + plot.y1 - w) / 2, &self.y_label, TEXT, BLACK);
 
         // Reference lines y = anchor_y (x / anchor_x)^slope, dashed (every
         // other of 40 pieces, even in log x), named where they leave the plot.
@@ -207,15 +189,8 @@ impl LogLogChart {
                 .collect();
             canvas.polyline(&points, 2.0, c.colour, plot);
         }
-        canvas.outline(
-            Rect {
-                x0: plot.x0 - 1,
-                y0: plot.y0 - 1,
-                x1: plot.x1 + 1,
-                y1: plot.y1 + 1,
-            },
-            BLACK,
-        );
+        // Title, axis labels and outline (outside the plot area).
+        canvas.chart_frame(plot, [&self.title, &self.x_label, &self.y_label], TEXT);
 
         // The legend, right of the plot: a short line of each colour, then
         // the label.

@@ -190,6 +190,36 @@ impl Canvas {
         self.vline(rect.x1 - 1, rect.y0, rect.y1 - 1, colour, 1.0, 0);
     }
 
+    /// A chart's frame around its plot area `plot`, in black: `title`
+    /// centred 12 pixels from the top, `x_label` centred under the x tick
+    /// labels (which sit 8 pixels below `plot`), `y_label` upright 12
+    /// pixels from the left, and a one-pixel outline just outside `plot`.
+    /// Shared by `LineChart` and the convergence study's log-log chart.
+    pub(crate) fn chart_frame(
+        &mut self,
+        plot: Rect,
+        [title, x_label, y_label]: [&str; 3],
+        scale: u32,
+    ) {
+        let (title_width, line_height) = Self::text_size(title, scale);
+        let width = i64::from(self.width);
+        self.text((width - title_width) / 2, 12, title, scale, BLACK);
+        let (w, _) = Self::text_size(x_label, scale);
+        let y = plot.y1 + 8 + line_height + 8;
+        self.text((plot.x0 + plot.x1 - w) / 2, y, x_label, scale, BLACK);
+        let (w, _) = Self::text_size(y_label, scale);
+        self.text_up(12, (plot.y0 + plot.y1 - w) / 2, y_label, scale, BLACK);
+        self.outline(
+            Rect {
+                x0: plot.x0 - 1,
+                y0: plot.y0 - 1,
+                x1: plot.x1 + 1,
+                y1: plot.y1 + 1,
+            },
+            BLACK,
+        );
+    }
+
     /// `text` with its top-left corner at `(x, y)`, each font pixel a
     /// `scale × scale` square.
     pub(crate) fn text(&mut self, x: i64, y: i64, text: &str, scale: u32, colour: Rgb) {
