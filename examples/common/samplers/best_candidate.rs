@@ -3,7 +3,7 @@
 //! exact count per pixel.
 
 use super::stratified::{cell_2d, grid_of, stratum_1d};
-use super::{Cursor, TAG_1D, TAG_2D, hash, to_unit};
+use super::{Cursor, TAG_1D, TAG_2D, cursor_position, hash, to_unit};
 use bridson::{Error, PixelSampler};
 use std::sync::{Arc, OnceLock};
 
@@ -455,18 +455,7 @@ fn shift(a: f64, b: f64) -> f64 {
 }
 
 impl PixelSampler for BestCandidateSampler {
-    fn samples_per_pixel(&self) -> u32 {
-        self.cursor.spp
-    }
-
-    fn start_pixel_sample(
-        &mut self,
-        pixel: [u32; 2],
-        index: u32,
-        dimension: u32,
-    ) -> Result<(), Error> {
-        self.cursor.start(pixel, index, dimension)
-    }
+    cursor_position!();
 
     fn get_1d(&mut self) -> f64 {
         let d = self.cursor.take(1);

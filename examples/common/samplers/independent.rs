@@ -1,6 +1,6 @@
 //! `independent`: every value an independent uniform hash.
 
-use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, hash, to_unit};
+use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, cursor_position, hash, to_unit};
 use bridson::{Error, PixelSampler};
 
 /// Independent uniform values: each is the hash of (seed, pixel, sample
@@ -31,18 +31,7 @@ impl IndependentSampler {
 }
 
 impl PixelSampler for IndependentSampler {
-    fn samples_per_pixel(&self) -> u32 {
-        self.cursor.spp
-    }
-
-    fn start_pixel_sample(
-        &mut self,
-        pixel: [u32; 2],
-        index: u32,
-        dimension: u32,
-    ) -> Result<(), Error> {
-        self.cursor.start(pixel, index, dimension)
-    }
+    cursor_position!();
 
     fn get_1d(&mut self) -> f64 {
         let d = self.cursor.take(1);

@@ -1,7 +1,7 @@
 //! `low-discrepancy`: pbrt-v2's `LDSampler`, a scrambled (0,2)-sequence
 //! per pixel, shuffled across dimensions.
 
-use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, halves, hash, permute};
+use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, cursor_position, halves, hash, permute};
 use bridson::{Error, PixelSampler};
 
 /// pbrt-v2's low-discrepancy sampler (`LDSampler`, with its
@@ -89,18 +89,7 @@ impl LowDiscrepancySampler {
 }
 
 impl PixelSampler for LowDiscrepancySampler {
-    fn samples_per_pixel(&self) -> u32 {
-        self.cursor.spp
-    }
-
-    fn start_pixel_sample(
-        &mut self,
-        pixel: [u32; 2],
-        index: u32,
-        dimension: u32,
-    ) -> Result<(), Error> {
-        self.cursor.start(pixel, index, dimension)
-    }
+    cursor_position!();
 
     fn get_1d(&mut self) -> f64 {
         let d = self.cursor.take(1);

@@ -166,6 +166,31 @@ pub(crate) fn permute(index: u32, n: u32, key: u64) -> u32 {
     }
 }
 
+/// The two [`PixelSampler`] methods that every [`Cursor`]-based sampler
+/// here writes the same way: `samples_per_pixel` and `start_pixel_sample`,
+/// read from and handed to the sampler's `cursor` field. Used inside the
+/// `impl PixelSampler` block, beside the sampler's own draws.
+///
+/// A macro, not a blanket impl: `PixelSampler` is the library's trait, so
+/// the examples cannot implement it for every type that has a cursor.
+macro_rules! cursor_position {
+    () => {
+        fn samples_per_pixel(&self) -> u32 {
+            self.cursor.spp
+        }
+
+        fn start_pixel_sample(
+            &mut self,
+            pixel: [u32; 2],
+            index: u32,
+            dimension: u32,
+        ) -> Result<(), bridson::Error> {
+            self.cursor.start(pixel, index, dimension)
+        }
+    };
+}
+pub(crate) use cursor_position;
+
 /// The current draw of a sampler: where it is (pixel, sample index,
 /// dimension) and the hash of its seed.
 #[derive(Clone, Copy, Debug)]

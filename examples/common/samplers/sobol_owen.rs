@@ -1,7 +1,7 @@
 //! `sobol-owen`: Owen-scrambled Sobol' points, padded per dimension pair
 //! (pbrt-v4's `PaddedSobolSampler` with Owen scrambling).
 
-use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, halves};
+use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, cursor_position, halves};
 use bridson::{Error, PixelSampler};
 
 /// Owen-scrambled Sobol' points through the `sobol_burley` crate (Burley
@@ -57,18 +57,7 @@ impl SobolOwenSampler {
 }
 
 impl PixelSampler for SobolOwenSampler {
-    fn samples_per_pixel(&self) -> u32 {
-        self.cursor.spp
-    }
-
-    fn start_pixel_sample(
-        &mut self,
-        pixel: [u32; 2],
-        index: u32,
-        dimension: u32,
-    ) -> Result<(), Error> {
-        self.cursor.start(pixel, index, dimension)
-    }
+    cursor_position!();
 
     fn get_1d(&mut self) -> f64 {
         let d = self.cursor.take(1);

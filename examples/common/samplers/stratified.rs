@@ -1,6 +1,8 @@
 //! `stratified`: jittered strata in every dimension, padded.
 
-use super::{Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, halves, hash, jitter, permute};
+use super::{
+    Cursor, MAX_SPP, TAG_1D, TAG_2D, TAG_FILM, cursor_position, halves, hash, jitter, permute,
+};
 use bridson::{Error, PixelSampler};
 
 /// Jittered stratified sampling, padded (pbrt's `StratifiedSampler` with
@@ -71,18 +73,7 @@ impl StratifiedSampler {
 }
 
 impl PixelSampler for StratifiedSampler {
-    fn samples_per_pixel(&self) -> u32 {
-        self.cursor.spp
-    }
-
-    fn start_pixel_sample(
-        &mut self,
-        pixel: [u32; 2],
-        index: u32,
-        dimension: u32,
-    ) -> Result<(), Error> {
-        self.cursor.start(pixel, index, dimension)
-    }
+    cursor_position!();
 
     fn get_1d(&mut self) -> f64 {
         let d = self.cursor.take(1);
