@@ -35,12 +35,13 @@ use core::iter::FusedIterator;
 use levels::Levels;
 use lists::Lists;
 
-/// The conflict cache's radius, in units of the parent's (`r0 / r(p)`).
-const QUICK_RADIUS: f64 = 63.0 / 64.0;
-/// `r(p) / r0` as `f32` (exact: 64/63 rounds once, to within `2⁻²⁴`, which
-/// with the offset's own rounding keeps the quick test's input within
-/// `2⁻²⁰` of the candidate's position in units of `r0`).
-const QUICK_STRETCH: f32 = 64.0 / 63.0;
+/// The conflict cache's unit, in units of the parent's radius (`r0 /
+/// r(p)`): its quick test serves candidates with `r0 <= r(c) <= 4·r0`,
+/// from half the parent's radius to twice it.
+const QUICK_RADIUS: f64 = 0.5;
+/// `r(p) / r0` as `f32` (exact), to put the offsets drawn ahead (units of
+/// `r(p)`) in units of `r0`.
+const QUICK_STRETCH: f32 = 2.0;
 
 /// A stored point and its radius, side by side.
 type Stored<const N: usize> = ([f64; N], f64);
@@ -321,11 +322,10 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             return Step::Stop;
         };
         let periods = self.periods;
-        // The cache's quick test (`f32`, in units of its radius) says
-        // "closer than `r0`", which means too close only for candidates
-        // with `r(c) >= r0`: a little under `r(p)`, so that it serves
-        // nearly every candidate where the field is smooth; the others
-        // take its exact test at `r(c)`.
+        // The cache's quick test (`f32`, in units of `r0`) says "closer
+        // than `r(c)`" for candidates with `r0 <= r(c) <= 4·r0`: every
+        // candidate where the field is smooth; the others take its exact
+        // test at `r(c)`.
         let r0 = rp * QUICK_RADIUS;
         let mut cache = ConflictCache::<N, B>::new(parent, r0);
         cache.push(&parent);
@@ -379,9 +379,15 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
                     continue;
                 }
             }
-            let blocked = if quick && rc >= r0 {
+            let blocked = if quick && rc >= r0 && rc <= 4.0 * r0 {
                 // The offset in units of r0: `unit` is in units of r(p).
-                cache.block_relative(&unit.map(|u| u * QUICK_STRETCH))
+                let s = rc / r0;
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    reason = "f32 on purpose: the quick test has a margin"
+                )]
+                let scale_squared = (s * s) as f32;
+                cache.block_relative_scaled(&unit.map(|u| u * QUICK_STRETCH), scale_squared)
             } else {
                 cache.block_periodic(&c, rc * rc, &periods)
             };
