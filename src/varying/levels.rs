@@ -525,6 +525,14 @@ impl<const N: usize> Levels<N> {
             let base = level.linear(&cell);
             let mut found = [EMPTY; CHUNK];
             let sub = level.sub.get(m)?;
+            // Ask for every row first, as the fixed radius's search: a
+            // candidate that gets this far often has no conflict nearby.
+            if N <= 3 {
+                for &[first, last] in &built.stencil.rows {
+                    crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(first));
+                    crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(last));
+                }
+            }
             for chunk in built.within(sub, rho).chunks(CHUNK) {
                 let n = level.occupied(base, chunk, &mut found);
                 for &v in found.iter().take(n) {
