@@ -50,6 +50,9 @@ pub(super) const MAX_RATIO: f64 = 16.0;
 pub(super) const MAX_DIM: usize = 4;
 /// Cells gathered before their points are checked (as `grid/dense.rs`).
 const CHUNK: usize = 8;
+/// The most occupied cells a seed collects: a stencil at a band's top
+/// holds about 20 points in 3-D, and the cache keeps at most 15.
+const SEED_MAX: usize = 32;
 /// Steps between consecutive stencil radii at which a stencil's
 /// nearest-first offsets are cut: a search of radius `ρ` reads the
 /// prefix of the first cut at or past `ρ`, not the whole stencil.
@@ -345,19 +348,25 @@ impl<const N: usize> Level<N> {
             .all(|((&c, &p), (&m, &periodic))| !periodic || (c >= p && c + p < m))
     }
 
-    /// The values of the occupied cells among `chunk` (at most
-    /// [`CHUNK`] offsets) around `base`, into `found`, without a branch
-    /// (most cells are empty); returns how many there were.
+    /// The values of the occupied cells among `offsets` around `base`,
+    /// into `found`, without a branch (most cells are empty); returns how
+    /// many there were. Past `M` (a power of two), later ones overwrite
+    /// earlier ones: only the seed meets that, and any subset suits it.
     #[inline(always)]
-    fn occupied(&self, base: usize, chunk: &[isize], found: &mut [u32; CHUNK]) -> usize {
+    fn occupied<const M: usize>(
+        &self,
+        base: usize,
+        offsets: &[isize],
+        found: &mut [u32; M],
+    ) -> usize {
         let mut n = 0;
-        for &off in chunk {
+        for &off in offsets {
             let v = self
                 .cells
                 .get(base.wrapping_add_signed(off))
                 .copied()
                 .unwrap_or(EMPTY);
-            if let Some(s) = found.get_mut(n) {
+            if let Some(s) = found.get_mut(n % M) {
                 *s = v;
             }
             n += usize::from(v != EMPTY);
@@ -622,7 +631,9 @@ impl<const N: usize> Levels<N> {
 
     /// Hands up to `limit` points of `p`'s level near `p` to `take`,
     /// nearest cells first: those within about `r` (the stencil of its
-    /// band's top), where no periodic wrap is needed.
+    /// band's top), where no periodic wrap is needed. Two passes, as the
+    /// fixed radius's seed, so that the points' loads go out together:
+    /// the occupied cells without a branch, then their points.
     pub(super) fn seed(
         &mut self,
         points: &[Stored<N>],
@@ -634,18 +645,11 @@ impl<const N: usize> Levels<N> {
         let Some((level, base, built, _)) = self.around(p, r) else {
             return;
         };
-        let mut left = limit;
-        let mut found = [EMPTY; CHUNK];
-        for chunk in built.stencil.offsets.chunks(CHUNK) {
-            let n = level.occupied(base, chunk, &mut found);
-            for &v in found.iter().take(n.min(left)) {
-                if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
-                    take(q);
-                }
-            }
-            left = left.saturating_sub(n);
-            if left == 0 {
-                return;
+        let mut found = [EMPTY; SEED_MAX];
+        let n = level.occupied(base, &built.stencil.offsets, &mut found);
+        for &v in found.iter().take(n.min(limit)) {
+            if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
+                take(q);
             }
         }
     }
