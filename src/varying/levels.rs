@@ -238,12 +238,19 @@ impl<const N: usize> Level<N> {
     }
 
     /// Builds the stencil of radius `radii[m]` for part `part`, unless
-    /// built already.
+    /// built already (the usual case, checked inline).
+    #[inline(always)]
     fn build(&mut self, m: usize, part: usize, periodic: &[bool; N]) {
         let slot = m * PARTS.pow(u32::try_from(N).unwrap_or(0)) + part;
-        if !self.stencils.get(slot).is_some_and(Option::is_none) {
-            return;
+        if self.stencils.get(slot).is_some_and(Option::is_none) {
+            self.build_slot(slot, m, part, periodic);
         }
+    }
+
+    /// [`Self::build`]'s work, into `slot`.
+    #[cold]
+    #[inline(never)]
+    fn build_slot(&mut self, slot: usize, m: usize, part: usize, periodic: &[bool; N]) {
         let radius = self.radii.get(m).copied().unwrap_or(f64::INFINITY);
         let reach = self.reach(radius, periodic);
         let mut part_of = [0usize; N];

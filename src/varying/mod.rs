@@ -327,6 +327,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         // candidate where the field is smooth; the others take its exact
         // test at `r(c)`.
         let r0 = rp * QUICK_RADIUS;
+        let inv_r0 = 1.0 / r0;
         let mut cache = ConflictCache::<N, B>::new(parent, r0);
         cache.push(&parent);
         if let Index::Levels(levels) = &mut self.index {
@@ -381,7 +382,9 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             }
             let blocked = if quick && rc >= r0 && rc <= 4.0 * r0 {
                 // The offset in units of r0: `unit` is in units of r(p).
-                let s = rc / r0;
+                // `rc·(1/r0)` is within 2⁻⁵² of `rc/r0`, and `s² >= 1` up
+                // to that: far inside the quick test's margin.
+                let s = (rc * inv_r0).max(1.0);
                 #[expect(
                     clippy::cast_possible_truncation,
                     reason = "f32 on purpose: the quick test has a margin"
