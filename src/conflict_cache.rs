@@ -277,50 +277,24 @@ mod tests {
     /// [`ConflictCache::block_relative`] with the candidate given as its offset
     /// from the active point in units of r (what the sampler passes when
     /// coordinates are below 2²⁸·r): never blocks a pair the exact formula
-    /// keeps, at coordinates up to the limit.
+    /// keeps, at coordinates up to the limit. The same for
+    /// [`ConflictCache::block_relative_scaled`] as the varying radius calls
+    /// it (offsets up to `4r`, a scale `s` in `1 ..= 4`) against `s·r`,
+    /// and it blocks a point well inside `s·r`.
     #[test]
     fn offsets_as_positions_never_block_at_or_past_r() {
-        fn check<const N: usize>(scale: f64, r: f64, seed: u64) {
+        fn check<const N: usize>(scale: f64, r: f64, seed: u64, scaled: bool) {
             let mut rng = seeded_rng(seed);
             for _ in 0..500 {
                 let origin: [f64; N] =
                     core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * scale * r);
                 let mut cache = ConflictCache::<N, 8>::new(origin, r);
-                let offset = direction::<N>(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
-                let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
-                #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
-                let rel = offset.map(|o| (o * (1.0 / r)) as f32);
-                let t = (unit(&mut rng) - 0.5) * 2f64.powi(-18);
-                let toward = direction::<N>(&mut rng);
-                let q: [f64; N] =
-                    core::array::from_fn(|i| candidate[i] + toward[i] * r * (1.0 + t));
-                cache.push(&q);
-                let exact = distance_squared(&candidate, &q) < r * r;
-                assert!(!cache.block_relative(&rel) || exact, "blocked past r");
-            }
-        }
-        // Coordinates up to the sampler's limit, NEAR_ORIGIN radii.
-        let limit = NEAR_ORIGIN;
-        check::<2>(limit, 1e-3, 7);
-        check::<3>(limit, 0.25, 8);
-        check::<2>(10.0, 1e-150, 9);
-        check::<3>(1.0, 1e150, 10);
-    }
-
-    /// [`ConflictCache::block_relative_scaled`], as the varying radius
-    /// calls it (unit `r`, candidate offsets up to `4r`, a scale `s` in
-    /// `1 ..= 4`): never blocks a pair at or past `s·r`, always blocks one
-    /// well inside, at coordinates up to the limit.
-    #[test]
-    fn scaled_offsets_never_block_at_or_past_s_r() {
-        fn check<const N: usize>(far: f64, r: f64, seed: u64) {
-            let mut rng = seeded_rng(seed);
-            for _ in 0..500 {
-                let origin: [f64; N] =
-                    core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * far * r);
-                let mut cache = ConflictCache::<N, 8>::new(origin, r);
-                let s = 1.0 + 3.0 * unit(&mut rng);
-                let offset = direction::<N>(&mut rng).map(|x| x * 4.0 * r * unit(&mut rng));
+                let (s, far) = if scaled {
+                    (1.0 + 3.0 * unit(&mut rng), 4.0 * unit(&mut rng))
+                } else {
+                    (1.0, 1.0 + unit(&mut rng))
+                };
+                let offset = direction::<N>(&mut rng).map(|x| x * r * far);
                 let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
                 #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
                 let (rel, s2) = (offset.map(|o| (o * (1.0 / r)) as f32), (s * s) as f32);
@@ -328,23 +302,31 @@ mod tests {
                 let toward = direction::<N>(&mut rng);
                 let q: [f64; N] =
                     core::array::from_fn(|i| candidate[i] + toward[i] * s * r * (1.0 + t));
-                let inside: [f64; N] =
-                    core::array::from_fn(|i| candidate[i] + toward[i] * s * r * 0.999);
                 cache.push(&q);
-                let (sr, d2) = (s * r, distance_squared(&candidate, &q));
-                let blocked = cache.block_relative_scaled(&rel, s2);
-                assert!(!blocked || d2 < sr * sr, "blocked past s·r, s = {s}");
-                cache.push(&inside);
-                assert!(
-                    cache.block_relative_scaled(&rel, s2),
-                    "0.999 s·r not blocked, s = {s}"
-                );
+                let exact = distance_squared(&candidate, &q) < s * r * s * r;
+                let blocked = if scaled {
+                    cache.block_relative_scaled(&rel, s2)
+                } else {
+                    cache.block_relative(&rel)
+                };
+                assert!(!blocked || exact, "blocked past s·r, s = {s}");
+                if scaled {
+                    let inside: [f64; N] =
+                        core::array::from_fn(|i| candidate[i] + toward[i] * s * r * 0.999);
+                    cache.push(&inside);
+                    let blocked = cache.block_relative_scaled(&rel, s2);
+                    assert!(blocked, "0.999·s·r not blocked, s = {s}");
+                }
             }
         }
-        check::<2>(NEAR_ORIGIN, 1e-3, 11);
-        check::<3>(NEAR_ORIGIN, 0.25, 12);
-        check::<3>(1.0, 1e-150, 13);
-        check::<2>(10.0, 1e150, 14);
+        // Coordinates up to the sampler's limit, NEAR_ORIGIN radii.
+        let limit = NEAR_ORIGIN;
+        for scaled in [false, true] {
+            check::<2>(limit, 1e-3, 7, scaled);
+            check::<3>(limit, 0.25, 8, scaled);
+            check::<2>(10.0, 1e-150, 9, scaled);
+            check::<3>(1.0, 1e150, 10, scaled);
+        }
     }
 
     #[test]
