@@ -159,9 +159,10 @@ impl<const N: usize> PoissonDisk<N> {
     /// `r_band/√N` (together up to about twice the cells of one grid at
     /// `r_min`, 4 bytes each), when they fit the memory budget; a whole
     /// `points --radius-range` run with `r_max / r_min = 4` (a linear field)
-    /// then took 1.8× the CPU time of a fixed radius making the same
-    /// number of points in 2-D (10⁶ points), 2.3× in 3-D (3·10⁵; 2.0× at
-    /// a ratio of 2); README has the figures.
+    /// then took 1.8–1.9× the CPU time of a fixed radius making the same
+    /// number of points in 2-D (10⁶ points), 2.1× in 3-D (3·10⁵; 1.9× at
+    /// a ratio of 2), on a shared machine at loads of 4 to 6; README has
+    /// the figures.
     /// Otherwise a slower index of lists per cell of side `r_max` serves,
     /// with the same points.
     ///
