@@ -286,7 +286,9 @@ impl<const N: usize> Level<N> {
     /// part, per axis less `η` cells, summed in squares. Each offset is
     /// decoded into its cell steps; where the padded axes are too short
     /// for that to be unique (a periodic axis narrower than the window,
-    /// whose stencils serve no search), nothing is cut.
+    /// whose stencils serve no search), nothing is cut. The gap is
+    /// `Stencil::new`'s formula, repeated: `Stencil` keeps no gaps, and
+    /// `grid/dense.rs` is shared with the fixed radius and the sweep.
     fn cuts(
         &self,
         offsets: &[isize],
