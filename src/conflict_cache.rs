@@ -125,6 +125,24 @@ impl<const N: usize, const B: usize> ConflictCache<N, B> {
     /// below `2²⁸·r` keep that under `2⁻²⁵·r`.)
     #[inline(always)]
     pub(crate) fn block_relative(&self, rel: &[f32; N]) -> bool {
+        self.block_relative_scaled(rel, 1.0)
+    }
+
+    /// [`Self::block_relative`] against `s·r` instead of `r`, where
+    /// `s² = scale_squared` lies in `1 ..= 16` (the varying radius: `r` is
+    /// a unit there, `s·r` the candidate's radius). Whether some
+    /// remembered point is surely closer than `s·r`. The caller vouches
+    /// for `rel` as for [`Self::block_relative`] and for a candidate within
+    /// about `4r` of `origin`. The argument of [`Self::block`] then holds,
+    /// scaled: a point that decides lies within `s·r <= 4r` of the
+    /// candidate, so its coordinates and the candidate's stay below 9
+    /// (units of `r`), each off by under `2⁻²⁰` (cast, and the caller's);
+    /// the squared distance near `s² >= 1` is then off by under
+    /// `(√N·2⁻¹⁸ + N·2⁻²³)·s²`, below the `2⁻¹²` margin up to 64 axes (the
+    /// bound `SURELY_INSIDE·s²` rounds once, by `2⁻²⁴`).
+    #[inline(always)]
+    pub(crate) fn block_relative_scaled(&self, rel: &[f32; N], scale_squared: f32) -> bool {
+        let bound = SURELY_INSIDE * scale_squared;
         let mut d2 = [0.0f32; B];
         for (&x, column) in rel.iter().zip(&self.near) {
             for (acc, &y) in d2.iter_mut().zip(column) {
@@ -132,7 +150,7 @@ impl<const N: usize, const B: usize> ConflictCache<N, B> {
                 *acc += d * d;
             }
         }
-        d2.iter().fold(false, |hit, &d| hit | (d < SURELY_INSIDE))
+        d2.iter().fold(false, |hit, &d| hit | (d < bound))
     }
 
     /// Whether some remembered point is closer than `r` to `p`, exactly as
@@ -259,34 +277,56 @@ mod tests {
     /// [`ConflictCache::block_relative`] with the candidate given as its offset
     /// from the active point in units of r (what the sampler passes when
     /// coordinates are below 2²⁸·r): never blocks a pair the exact formula
-    /// keeps, at coordinates up to the limit.
+    /// keeps, at coordinates up to the limit. The same for
+    /// [`ConflictCache::block_relative_scaled`] as the varying radius calls
+    /// it (offsets up to `4r`, a scale `s` in `1 ..= 4`) against `s·r`,
+    /// and it blocks a point well inside `s·r`.
     #[test]
     fn offsets_as_positions_never_block_at_or_past_r() {
-        fn check<const N: usize>(scale: f64, r: f64, seed: u64) {
+        fn check<const N: usize>(scale: f64, r: f64, seed: u64, scaled: bool) {
             let mut rng = seeded_rng(seed);
             for _ in 0..500 {
                 let origin: [f64; N] =
                     core::array::from_fn(|_| (2.0 * unit(&mut rng) - 1.0) * scale * r);
                 let mut cache = ConflictCache::<N, 8>::new(origin, r);
-                let offset = direction::<N>(&mut rng).map(|x| x * r * (1.0 + unit(&mut rng)));
+                let (s, far) = if scaled {
+                    (1.0 + 3.0 * unit(&mut rng), 4.0 * unit(&mut rng))
+                } else {
+                    (1.0, 1.0 + unit(&mut rng))
+                };
+                let offset = direction::<N>(&mut rng).map(|x| x * r * far);
                 let candidate: [f64; N] = core::array::from_fn(|i| origin[i] + offset[i]);
                 #[expect(clippy::cast_possible_truncation, reason = "as the sampler does")]
-                let rel = offset.map(|o| (o * (1.0 / r)) as f32);
+                let (rel, s2) = (offset.map(|o| (o * (1.0 / r)) as f32), (s * s) as f32);
                 let t = (unit(&mut rng) - 0.5) * 2f64.powi(-18);
                 let toward = direction::<N>(&mut rng);
                 let q: [f64; N] =
-                    core::array::from_fn(|i| candidate[i] + toward[i] * r * (1.0 + t));
+                    core::array::from_fn(|i| candidate[i] + toward[i] * s * r * (1.0 + t));
                 cache.push(&q);
-                let exact = distance_squared(&candidate, &q) < r * r;
-                assert!(!cache.block_relative(&rel) || exact, "blocked past r");
+                let exact = distance_squared(&candidate, &q) < s * r * s * r;
+                let blocked = if scaled {
+                    cache.block_relative_scaled(&rel, s2)
+                } else {
+                    cache.block_relative(&rel)
+                };
+                assert!(!blocked || exact, "blocked past s·r, s = {s}");
+                if scaled {
+                    let inside: [f64; N] =
+                        core::array::from_fn(|i| candidate[i] + toward[i] * s * r * 0.999);
+                    cache.push(&inside);
+                    let blocked = cache.block_relative_scaled(&rel, s2);
+                    assert!(blocked, "0.999·s·r not blocked, s = {s}");
+                }
             }
         }
         // Coordinates up to the sampler's limit, NEAR_ORIGIN radii.
         let limit = NEAR_ORIGIN;
-        check::<2>(limit, 1e-3, 7);
-        check::<3>(limit, 0.25, 8);
-        check::<2>(10.0, 1e-150, 9);
-        check::<3>(1.0, 1e150, 10);
+        for scaled in [false, true] {
+            check::<2>(limit, 1e-3, 7, scaled);
+            check::<3>(limit, 0.25, 8, scaled);
+            check::<2>(10.0, 1e-150, 9, scaled);
+            check::<3>(1.0, 1e150, 10, scaled);
+        }
     }
 
     #[test]

@@ -9,11 +9,13 @@
 //! largest radius stored there: a candidate `c` of radius `r(c)` searches
 //! only those levels, level `j` out to `ρ = max(r(c), min(top_j, largest))`,
 //! which bounds `max(r(c), r(q))` for every point `q` of that level that
-//! could be too close. The search runs over a stencil of that radius (from
-//! a family of radii `t_j·2^(m/2)`, built on first use, cut by the part of
-//! the cell the candidate lies in, as in `grid/dense.rs`), with the
-//! rounding margin of the level's grid; near a face, over the whole box of
-//! cells within the reach, wrapping on periodic axes.
+//! could be too close. The search runs over a stencil of the first radius
+//! past `ρ` in a family `t_j·2^(m/2)` (built on first use, cut by the part
+//! of the cell the candidate lies in, as in `grid/dense.rs`, with the
+//! rounding margin of the level's grid), and of that stencil, nearest cells
+//! first, only the prefix that reaches `ρ`, to one of [`CUTS`] steps
+//! between the family's radii; near a face, over the whole box of cells
+//! within the reach, wrapping on periodic axes.
 //!
 //! With a smooth field, the points near a candidate share its level, so a
 //! search is about one stencil a little wider (at most `√2` in radius)
@@ -48,12 +50,35 @@ pub(super) const MAX_RATIO: f64 = 16.0;
 pub(super) const MAX_DIM: usize = 4;
 /// Cells gathered before their points are checked (as `grid/dense.rs`).
 const CHUNK: usize = 8;
+/// The most occupied cells a seed collects: a stencil at a band's top
+/// holds about 20 points in 3-D, and the cache keeps at most 15.
+const SEED_MAX: usize = 32;
+/// Steps between consecutive stencil radii at which a stencil's
+/// nearest-first offsets are cut: a search of radius `ρ` reads the
+/// prefix of the first cut at or past `ρ`, not the whole stencil.
+const CUTS: usize = 8;
 
-/// A stencil and the reach it was cut with.
+/// A stencil, the reach it was cut with, and its prefixes.
 #[derive(Debug)]
 struct Built<const N: usize> {
     stencil: Stencil,
     reach: [usize; N],
+    /// `cuts[k]`: how many of the offsets (nearest first) it takes to
+    /// cover every cell within the level's `sub[m][k]` of the part.
+    cuts: [u32; CUTS],
+}
+
+impl<const N: usize> Built<N> {
+    /// The offsets a search of radius `rho` needs, given the stencil's
+    /// cut radii `sub` (rising): the prefix of the first cut at or past
+    /// `rho`, the whole stencil past the last.
+    #[inline(always)]
+    fn within(&self, sub: &[f64; CUTS], rho: f64) -> &[isize] {
+        let k = sub.iter().take_while(|&&r| r < rho).count();
+        let len = self.cuts.get(k).map_or(usize::MAX, |&n| n as usize);
+        let offsets = &self.stencil.offsets;
+        offsets.get(..len).unwrap_or(offsets)
+    }
 }
 
 /// One band of radii and its grid.
@@ -77,6 +102,9 @@ struct Level<const N: usize> {
     cells: Vec<u32>,
     /// The search radii of the stencils, rising, the last `>= r_max`.
     radii: Vec<f64>,
+    /// Per stencil radius `radii[m]`: the radii its offsets are cut at,
+    /// evenly spaced from the previous radius (0 for the first) to it.
+    sub: Vec<[f64; CUTS]>,
     /// Per (radius, part), `m·parts^N + part`: built on first use.
     stencils: Vec<Option<Built<N>>>,
 }
@@ -122,6 +150,17 @@ impl<const N: usize> Level<N> {
             r *= STENCIL_STEP;
             radii.push(r);
         }
+        let mut below = 0.0;
+        let sub = radii
+            .iter()
+            .map(|&r| {
+                #[expect(clippy::cast_precision_loss, reason = "a few steps")]
+                let cut =
+                    core::array::from_fn(|k| below + (r - below) * (k + 1) as f64 / CUTS as f64);
+                below = r;
+                cut
+            })
+            .collect();
         let mut level = Self {
             floor,
             top,
@@ -133,6 +172,7 @@ impl<const N: usize> Level<N> {
             eta,
             cells: Vec::new(),
             radii,
+            sub,
             stencils: Vec::new(),
         };
         // The widest reach is the last radius's.
@@ -198,12 +238,19 @@ impl<const N: usize> Level<N> {
     }
 
     /// Builds the stencil of radius `radii[m]` for part `part`, unless
-    /// built already.
+    /// built already (the usual case, checked inline).
+    #[inline(always)]
     fn build(&mut self, m: usize, part: usize, periodic: &[bool; N]) {
         let slot = m * PARTS.pow(u32::try_from(N).unwrap_or(0)) + part;
-        if !self.stencils.get(slot).is_some_and(Option::is_none) {
-            return;
+        if self.stencils.get(slot).is_some_and(Option::is_none) {
+            self.build_slot(slot, m, part, periodic);
         }
+    }
+
+    /// [`Self::build`]'s work, into `slot`.
+    #[cold]
+    #[inline(never)]
+    fn build_slot(&mut self, slot: usize, m: usize, part: usize, periodic: &[bool; N]) {
         let radius = self.radii.get(m).copied().unwrap_or(f64::INFINITY);
         let reach = self.reach(radius, periodic);
         let mut part_of = [0usize; N];
@@ -218,11 +265,81 @@ impl<const N: usize> Level<N> {
             eta: self.eta,
             radius,
         };
-        let built = Stencil::new(&shape, &self.stride, &part_of, PARTS)
-            .map(|stencil| Built { stencil, reach });
+        let sub = self.sub.get(m).copied().unwrap_or([f64::INFINITY; CUTS]);
+        let built = Stencil::new(&shape, &self.stride, &part_of, PARTS).map(|stencil| {
+            let cuts = self.cuts(&stencil.offsets, &reach, &part_of, &sub);
+            Built {
+                stencil,
+                reach,
+                cuts,
+            }
+        });
         if let Some(s) = self.stencils.get_mut(slot) {
             *s = built;
         }
+    }
+
+    /// Per cut radius `sub[k]`, the length of the shortest prefix of
+    /// `offsets` (a stencil of part `part`, reach `reach`, nearest first)
+    /// that holds every cell within `sub[k]` of the part, the rounding
+    /// margin counted as `Stencil::new` counts it: the cell's gap to the
+    /// part, per axis less `η` cells, summed in squares. Each offset is
+    /// decoded into its cell steps; where the padded axes are too short
+    /// for that to be unique (a periodic axis narrower than the window,
+    /// whose stencils serve no search), nothing is cut. The gap is
+    /// `Stencil::new`'s formula, repeated: `Stencil` keeps no gaps, and
+    /// `grid/dense.rs` is shared with the fixed radius and the sweep.
+    fn cuts(
+        &self,
+        offsets: &[isize],
+        reach: &[usize; N],
+        part: &[usize; N],
+        sub: &[f64; CUTS],
+    ) -> [u32; CUTS] {
+        let whole = u32::try_from(offsets.len()).unwrap_or(u32::MAX);
+        let mut cuts = [whole; CUTS];
+        let unique = reach
+            .iter()
+            .zip(&self.counts)
+            .zip(&self.pad)
+            .all(|((&p, &m), &pad)| 2 * p < m + 2 * pad);
+        if !unique {
+            return cuts;
+        }
+        cuts = [0; CUTS];
+        #[expect(clippy::cast_precision_loss, reason = "a few parts")]
+        let parts = PARTS as f64;
+        for (i, &o) in offsets.iter().enumerate() {
+            // Highest axis first: the lower axes' steps add up to less
+            // than half its stride, so rounding to the nearest multiple
+            // gives its step.
+            let mut rest = o;
+            let mut gap2 = 0.0;
+            for ((&s, &k), &side) in self.stride.iter().zip(part).zip(&self.side).rev() {
+                let s = isize::try_from(s).unwrap_or(isize::MAX);
+                let d = (rest + (s - 1) / 2).div_euclid(s);
+                rest -= d * s;
+                #[expect(clippy::cast_precision_loss, reason = "small steps and parts")]
+                let (d, k) = (d as f64, k as f64);
+                let (a, b) = (k / parts, (k + 1.0) / parts);
+                let gap = if d >= 1.0 {
+                    d - b
+                } else if d <= -1.0 {
+                    a - (d + 1.0)
+                } else {
+                    0.0
+                };
+                let gap = (gap - self.eta).max(0.0) * side;
+                gap2 += gap * gap;
+            }
+            let len = u32::try_from(i + 1).unwrap_or(u32::MAX);
+            for (cut, &r) in cuts.iter_mut().zip(sub) {
+                if gap2 < r * r {
+                    *cut = len;
+                }
+            }
+        }
+        cuts
     }
 
     /// The stencil of radius `radii[m]` for part `part`, if built.
@@ -240,19 +357,25 @@ impl<const N: usize> Level<N> {
             .all(|((&c, &p), (&m, &periodic))| !periodic || (c >= p && c + p < m))
     }
 
-    /// The values of the occupied cells among `chunk` (at most
-    /// [`CHUNK`] offsets) around `base`, into `found`, without a branch
-    /// (most cells are empty); returns how many there were.
+    /// The values of the occupied cells among `offsets` around `base`,
+    /// into `found`, without a branch (most cells are empty); returns how
+    /// many there were. Past `M` (a power of two), later ones overwrite
+    /// earlier ones: only the seed meets that, and any subset suits it.
     #[inline(always)]
-    fn occupied(&self, base: usize, chunk: &[isize], found: &mut [u32; CHUNK]) -> usize {
+    fn occupied<const M: usize>(
+        &self,
+        base: usize,
+        offsets: &[isize],
+        found: &mut [u32; M],
+    ) -> usize {
         let mut n = 0;
-        for &off in chunk {
+        for &off in offsets {
             let v = self
                 .cells
                 .get(base.wrapping_add_signed(off))
                 .copied()
                 .unwrap_or(EMPTY);
-            if let Some(s) = found.get_mut(n) {
+            if let Some(s) = found.get_mut(n % M) {
                 *s = v;
             }
             n += usize::from(v != EMPTY);
@@ -419,7 +542,16 @@ impl<const N: usize> Levels<N> {
         if level.fits(&cell, &built.reach, &periodic) {
             let base = level.linear(&cell);
             let mut found = [EMPTY; CHUNK];
-            for chunk in built.stencil.offsets.chunks(CHUNK) {
+            let sub = level.sub.get(m)?;
+            // Ask for every row first, as the fixed radius's search: a
+            // candidate that gets this far often has no conflict nearby.
+            if N <= 3 {
+                for &[first, last] in &built.stencil.rows {
+                    crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(first));
+                    crate::prefetch::prefetch(&level.cells, base.wrapping_add_signed(last));
+                }
+            }
+            for chunk in built.within(sub, rho).chunks(CHUNK) {
                 let n = level.occupied(base, chunk, &mut found);
                 for &v in found.iter().take(n) {
                     let i = v.wrapping_sub(1) as usize;
@@ -483,7 +615,11 @@ impl<const N: usize> Levels<N> {
     /// The level of radius `r`, the cell of `p` in it (its index) and the
     /// stencil of radius `r` (its band's top) around it, if that needs no
     /// periodic wrap: where [`Self::seed`] and [`Self::prefetch`] look.
-    fn around(&mut self, p: &[f64; N], r: f64) -> Option<(&Level<N>, usize, &Built<N>)> {
+    fn around(
+        &mut self,
+        p: &[f64; N],
+        r: f64,
+    ) -> Option<(&Level<N>, usize, &Built<N>, &[f64; CUTS])> {
         let (lo, periodic) = (self.lo, self.periodic);
         let j = self.level_of(r);
         let level = self.levels.get_mut(j)?;
@@ -499,12 +635,14 @@ impl<const N: usize> Levels<N> {
         if !level.fits(&cell, &built.reach, &periodic) {
             return None;
         }
-        Some((level, level.linear(&cell), built))
+        Some((level, level.linear(&cell), built, level.sub.get(m)?))
     }
 
     /// Hands up to `limit` points of `p`'s level near `p` to `take`,
     /// nearest cells first: those within about `r` (the stencil of its
-    /// band's top), where no periodic wrap is needed.
+    /// band's top), where no periodic wrap is needed. Two passes, as the
+    /// fixed radius's seed, so that the points' loads go out together:
+    /// the occupied cells without a branch, then their points.
     pub(super) fn seed(
         &mut self,
         points: &[Stored<N>],
@@ -513,21 +651,14 @@ impl<const N: usize> Levels<N> {
         limit: usize,
         mut take: impl FnMut(&[f64; N]),
     ) {
-        let Some((level, base, built)) = self.around(p, r) else {
+        let Some((level, base, built, _)) = self.around(p, r) else {
             return;
         };
-        let mut left = limit;
-        let mut found = [EMPTY; CHUNK];
-        for chunk in built.stencil.offsets.chunks(CHUNK) {
-            let n = level.occupied(base, chunk, &mut found);
-            for &v in found.iter().take(n.min(left)) {
-                if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
-                    take(q);
-                }
-            }
-            left = left.saturating_sub(n);
-            if left == 0 {
-                return;
+        let mut found = [EMPTY; SEED_MAX];
+        let n = level.occupied(base, &built.stencil.offsets, &mut found);
+        for &v in found.iter().take(n.min(limit)) {
+            if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
+                take(q);
             }
         }
     }
@@ -538,7 +669,7 @@ impl<const N: usize> Levels<N> {
         if N > 3 {
             return;
         }
-        let Some((level, base, built)) = self.around(p, r) else {
+        let Some((level, base, built, _)) = self.around(p, r) else {
             return;
         };
         for &[first, last] in &built.stencil.rows {
@@ -584,5 +715,73 @@ impl<const N: usize> Levels<N> {
             None::<()>
         });
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::random::{seeded_rng, unit};
+
+    /// A cut of a stencil holds every cell that a point closer than the
+    /// cut's radius to a point of the stencil's part can lie in, for every
+    /// radius and part of a level: random pairs, their cells' offset looked
+    /// up in the prefix.
+    #[expect(clippy::cast_possible_truncation, reason = "cells of a small window")]
+    fn cuts_cover<const N: usize>(periodic: bool, seed: u64) {
+        let domain = Domain::from_extent([1.0; N])
+            .unwrap()
+            .with_periodic([periodic; N]);
+        let (floor, r_max) = (0.03, 0.12);
+        let (mut level, _) = Level::new(&domain, floor, floor * LEVEL_STEP, r_max).unwrap();
+        let axes = domain.periodic();
+        let mut rng = seeded_rng(seed);
+        let mut checked = 0;
+        for m in 0..level.radii.len() {
+            for part in 0..PARTS.pow(u32::try_from(N).unwrap()) {
+                level.build(m, part, &axes);
+                let built = level.stencil(m, part).unwrap();
+                let sub = level.sub[m];
+                assert_eq!(
+                    built.within(&sub, f64::INFINITY),
+                    &built.stencil.offsets[..]
+                );
+                for _ in 0..300 {
+                    // Positions in cells, the centre cell being 0..1.
+                    let mut rest = part;
+                    let mut d2 = 0.0;
+                    let mut offset = 0isize;
+                    for i in 0..N {
+                        let k = (rest % PARTS) as f64;
+                        rest /= PARTS;
+                        let x = (k + unit(&mut rng)) / PARTS as f64;
+                        let reach = built.reach[i] as f64;
+                        let y = -reach + unit(&mut rng) * (2.0 * reach + 1.0);
+                        offset += (y.floor() as isize) * level.stride[i] as isize;
+                        let d = (x - y) * level.side[i];
+                        d2 += d * d;
+                    }
+                    for (k, &r) in sub.iter().enumerate() {
+                        if d2 < r * r {
+                            checked += 1;
+                            assert!(
+                                built.within(&sub, r).contains(&offset),
+                                "{N}-D m {m} part {part} cut {k}: offset {offset} missing"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 1000, "{N}-D: {checked} pairs checked");
+    }
+
+    #[test]
+    fn cuts_hold_every_cell_within_their_radius() {
+        cuts_cover::<1>(false, 1);
+        cuts_cover::<2>(false, 2);
+        cuts_cover::<2>(true, 3);
+        cuts_cover::<3>(false, 4);
+        cuts_cover::<4>(true, 5);
     }
 }

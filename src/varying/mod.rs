@@ -35,12 +35,13 @@ use core::iter::FusedIterator;
 use levels::Levels;
 use lists::Lists;
 
-/// The conflict cache's radius, in units of the parent's (`r0 / r(p)`).
-const QUICK_RADIUS: f64 = 63.0 / 64.0;
-/// `r(p) / r0` as `f32` (exact: 64/63 rounds once, to within `2⁻²⁴`, which
-/// with the offset's own rounding keeps the quick test's input within
-/// `2⁻²⁰` of the candidate's position in units of `r0`).
-const QUICK_STRETCH: f32 = 64.0 / 63.0;
+/// The conflict cache's unit, in units of the parent's radius (`r0 /
+/// r(p)`): its quick test serves candidates with `r0 <= r(c) <= 4·r0`,
+/// from half the parent's radius to twice it.
+const QUICK_RADIUS: f64 = 0.5;
+/// `r(p) / r0` as `f32` (exact), to put the offsets drawn ahead (units of
+/// `r(p)`) in units of `r0`.
+const QUICK_STRETCH: f32 = 2.0;
 
 /// A stored point and its radius, side by side.
 type Stored<const N: usize> = ([f64; N], f64);
@@ -158,9 +159,10 @@ impl<const N: usize> PoissonDisk<N> {
     /// `r_band/√N` (together up to about twice the cells of one grid at
     /// `r_min`, 4 bytes each), when they fit the memory budget; a whole
     /// `points --radius-range` run with `r_max / r_min = 4` (a linear field)
-    /// then took 1.8× the CPU time of a fixed radius making the same
-    /// number of points in 2-D (10⁶ points), 2.3× in 3-D (3·10⁵; 2.0× at
-    /// a ratio of 2); README has the figures.
+    /// then took 1.8–1.9× the CPU time of a fixed radius making the same
+    /// number of points in 2-D (10⁶ points), 2.1× in 3-D (3·10⁵; 1.9× at
+    /// a ratio of 2), on a shared machine at loads of 4 to 6; README has
+    /// the figures.
     /// Otherwise a slower index of lists per cell of side `r_max` serves,
     /// with the same points.
     ///
@@ -321,12 +323,12 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             return Step::Stop;
         };
         let periods = self.periods;
-        // The cache's quick test (`f32`, in units of its radius) says
-        // "closer than `r0`", which means too close only for candidates
-        // with `r(c) >= r0`: a little under `r(p)`, so that it serves
-        // nearly every candidate where the field is smooth; the others
-        // take its exact test at `r(c)`.
+        // The cache's quick test (`f32`, in units of `r0`) says "closer
+        // than `r(c)`" for candidates with `r0 <= r(c) <= 4·r0`: every
+        // candidate where the field is smooth; the others take its exact
+        // test at `r(c)`.
         let r0 = rp * QUICK_RADIUS;
+        let inv_r0 = 1.0 / r0;
         let mut cache = ConflictCache::<N, B>::new(parent, r0);
         cache.push(&parent);
         if let Index::Levels(levels) = &mut self.index {
@@ -335,8 +337,8 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         // Far from every face, no candidate can leave the box (annulus
         // candidates lie within 2·r(p)·(1 + 1e-7), on-sphere ones within
         // r_max·(1 + 1e-7); the test keeps twice its reach).
-        let interior =
-            !self.domain.any_periodic() && self.domain.holds_ball(&parent, 2.0 * self.r_max);
+        let reach = if self.sphere { self.r_max } else { 2.0 * rp };
+        let interior = !self.domain.any_periodic() && self.domain.holds_ball(&parent, reach);
         let ahead = self.candidates.reads_ahead();
         // Coordinates below 2²⁸·r0: the candidate is its offset from the
         // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`).
@@ -379,9 +381,17 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
                     continue;
                 }
             }
-            let blocked = if quick && rc >= r0 {
+            let blocked = if quick && rc >= r0 && rc <= 4.0 * r0 {
                 // The offset in units of r0: `unit` is in units of r(p).
-                cache.block_relative(&unit.map(|u| u * QUICK_STRETCH))
+                // `rc·(1/r0)` is within 2⁻⁵² of `rc/r0`, and `s² >= 1` up
+                // to that: far inside the quick test's margin.
+                let s = (rc * inv_r0).max(1.0);
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    reason = "f32 on purpose: the quick test has a margin"
+                )]
+                let scale_squared = (s * s) as f32;
+                cache.block_relative_scaled(&unit.map(|u| u * QUICK_STRETCH), scale_squared)
             } else {
                 cache.block_periodic(&c, rc * rc, &periods)
             };
