@@ -60,12 +60,15 @@ pub(crate) struct RollingGrid {
 impl RollingGrid {
     /// A grid for a raster of `cells_x × cells_y` cells of side `side`, of
     /// which at most `live_rows` rows are in use at once, searched `reach`
-    /// cells around with rounding margin `eta`. `None` if a size overflows.
+    /// cells around with rounding margin `eta`; with `prefetch`,
+    /// [`Self::prefetch`] asks for a pick's cells. `None` if a size
+    /// overflows.
     pub(crate) fn new(
         (cells_x, cells_y): (usize, usize),
         live_rows: usize,
         side: f64,
         (radius, reach, eta): (f64, usize, f64),
+        prefetch: bool,
     ) -> Option<Self> {
         let (columns, rows) = Self::size(cells_x, live_rows, reach)?;
         let shape = StencilShape {
@@ -79,7 +82,13 @@ impl RollingGrid {
         let mut seed_offsets: Vec<isize> =
             full.offsets.iter().copied().filter(|&o| o != 0).collect();
         seed_offsets.sort_unstable();
-        let block_lines = block_lines(radius, side, reach, columns);
+        // Within the L2 cache, a pick's cells are near at hand already and
+        // their prefetch only costs instructions.
+        let block_lines = if prefetch {
+            block_lines(radius, side, reach, columns)
+        } else {
+            Vec::new()
+        };
         let count = parts(2) * parts(2);
         let parts = (0..count)
             .map(|k| Stencil::new(&shape, &stride, &[k % parts(2), k / parts(2)], parts(2)))
@@ -253,6 +262,9 @@ impl RollingGrid {
     /// the inner block (`r` plus the reach) is fetched.
     #[inline(always)]
     pub(crate) fn prefetch(&self, p: &[f64; 2]) {
+        if self.block_lines.is_empty() {
+            return;
+        }
         let (cx, cy, _) = self.locate(p);
         let base = self.index(cx, cy);
         for &line in &self.block_lines {
@@ -260,10 +272,10 @@ impl RollingGrid {
         }
     }
 
-    /// Hands every stored point of the cell rows that cover pixel row `y`
-    /// to `take` (points of the neighbouring pixel rows too: the caller
-    /// filters), row by row, left to right.
-    pub(crate) fn for_each_in_row(&self, y: usize, mut take: impl FnMut(&[f64; 2])) {
+    /// Hands the cells of each cell row that covers pixel row `y` to
+    /// `take`, a slice a row, top to bottom, empty cells ([`FAR`]) and the
+    /// points of the neighbouring pixel rows included: the caller filters.
+    pub(crate) fn for_each_row_of(&self, y: usize, mut take: impl FnMut(&[[f64; 2]])) {
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,
@@ -276,15 +288,12 @@ impl RollingGrid {
         );
         for cy in lo..=hi {
             // The row's first (padding) cell; `usize::MAX` above the array.
-            let Some(cells) = self
+            if let Some(cells) = self
                 .index(0, cy)
                 .checked_sub(self.reach)
                 .and_then(|a| self.cells.get(a..a.checked_add(self.columns)?))
-            else {
-                continue;
-            };
-            for q in cells.iter().filter(|q| q[0] != f64::INFINITY) {
-                take(q);
+            {
+                take(cells);
             }
         }
     }

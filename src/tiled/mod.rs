@@ -408,9 +408,15 @@ impl Tiled {
             scheme: s.scheme,
             width: self.plan.width,
             height: self.plan.height,
-            lead: (8.0 + queue::BUCKET) * self.radius,
+            lead: self.plan.lead(self.radius),
             near: near_offsets(self.radius, self.plan.width.max(self.plan.height)),
             queue: BandQueue::new(self.radius),
+            scratch: BandQueue::new(self.radius),
+            block_width: BLOCK_CELLS * self.plan.side,
+            rows_per_round: self.plan.rows_per_round,
+            blocks: Vec::new(),
+            order: Vec::new(),
+            pending: Vec::new(),
             jitter: SWEEP_BAND * self.radius,
             reach: 2.0 * self.radius,
             radius_squared: self.radius * self.radius,
@@ -448,8 +454,22 @@ pub struct Pixels<R> {
     lead: f64,
     /// Pixel offsets `(dx, dy)` whose box comes within `2r` of a pixel.
     near: Vec<(isize, isize)>,
-    /// Sweep scheme: the active points, by key.
+    /// Sweep scheme: the active points, by key (wide windows: but for
+    /// those of the block being worked).
     queue: BandQueue,
+    /// Wide windows: the active points of the block being worked.
+    scratch: BandQueue,
+    /// Width of a block of columns, in pixels.
+    block_width: f64,
+    /// Wide windows: rows made per round of blocks (see [`BLOCK_CELLS`]);
+    /// 0 for narrow windows, worked across their whole width.
+    rows_per_round: usize,
+    /// Per block, the points to work in it before the current key limit,
+    /// with their buckets.
+    blocks: Vec<Vec<([f64; 2], u64)>>,
+    /// The blocks in the order they are worked, and which are still to be.
+    order: Vec<usize>,
+    pending: Vec<bool>,
     /// `J`: height of the band in which the sweep works in random order.
     jitter: f64,
     /// `2r`: no candidate lands farther than this from its parent.
@@ -462,6 +482,15 @@ pub struct Pixels<R> {
     exact: Option<Exact>,
     top_ups: u64,
 }
+
+/// Width of the sweep's blocks of columns, in grid cells, on wide windows
+/// (`WindowPlan::rows_per_round`). There the sweep works the points due
+/// before the next few rows are emitted one block at a time, the blocks in
+/// random order and their edges shifted at random every round: a block's
+/// cells (about 100 KB at 4 a pixel) stay in cache while it is worked,
+/// where picks uniform along a front as wide as the image missed the L2
+/// cache (`docs/performance-journal.md`).
+const BLOCK_CELLS: f64 = 256.0;
 
 /// Height of the sweep's random-order band, in radii. Taller bands are
 /// closer to Bridson's fully random pick and cost window rows.
@@ -540,22 +569,18 @@ impl<R: Rng> Pixels<R> {
             self.seed_row(0);
         }
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
-        let done_at = (y + 1) as f64 + self.reach + self.jitter;
+        let mut done_at = (y + 1) as f64 + self.reach + self.jitter;
+        // Wide windows: a round of blocks makes `rows_per_round` rows.
+        if self.rows_per_round > 1 && y.is_multiple_of(self.rows_per_round) {
+            #[expect(clippy::cast_precision_loss, reason = "a few rows")]
+            let more = (self.rows_per_round - 1) as f64;
+            done_at += more;
+        }
         loop {
-            // Bridson's loop over the lowest band: a random active point of
-            // it throws its candidates; it stays active until it fails.
-            loop {
-                let window = &self.window;
-                let Some((place, parent)) = self
-                    .queue
-                    .pick(done_at, &mut self.rng, |p| window.prefetch(p))
-                else {
-                    break;
-                };
-                match self.spawn(&parent, (0, y), false) {
-                    Some(child) => self.push(child),
-                    None => self.queue.retire(place),
-                }
+            if self.rows_per_round == 0 {
+                self.work_band(done_at, y);
+            } else {
+                while self.work_blocks(done_at, y) {}
             }
             // A connected front reaches every pixel; this only seeds
             // pixels no point has come within 2r of (say, r much larger
@@ -564,6 +589,124 @@ impl<R: Rng> Pixels<R> {
                 return;
             }
         }
+    }
+
+    /// Works every queued point whose bucket starts below `limit` until it
+    /// fails, across the whole width (narrow windows).
+    fn work_band(&mut self, limit: f64, y: usize) {
+        // Bridson's loop over the lowest band: a random active point of
+        // it throws its candidates; it stays active until it fails.
+        loop {
+            let window = &self.window;
+            let Some((place, parent)) = self
+                .queue
+                .pick(limit, &mut self.rng, |p| window.prefetch(p))
+            else {
+                break;
+            };
+            match self.spawn(&parent, (0, y), false) {
+                Some(child) => self.push(child),
+                None => self.queue.retire(place),
+            }
+        }
+    }
+
+    /// Works every queued point whose bucket starts below `limit` until it
+    /// fails, block of columns by block of columns (wide windows, see
+    /// [`BLOCK_CELLS`]); whether there was any. A child that lands in a
+    /// block already worked is queued, for the next call.
+    fn work_blocks(&mut self, limit: f64, y: usize) -> bool {
+        let width = self.block_width;
+        let shift = width * unit(&mut self.rng);
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+        let span = self.width as f64 + shift;
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "a few blocks per row: the width over the block width, plus one"
+        )]
+        let count = (span / width) as usize + 1;
+        let inv_width = 1.0 / width;
+        let block_of = move |p: &[f64; 2]| -> usize {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "a point of the raster: in 0..count"
+            )]
+            let b = ((p[0] + shift) * inv_width) as usize;
+            b.min(count - 1)
+        };
+        if self.blocks.len() < count {
+            self.blocks.resize_with(count, Vec::new);
+        }
+        let mut any = false;
+        let blocks = &mut self.blocks;
+        self.queue.drain_below(limit, |p, bucket| {
+            any = true;
+            if let Some(list) = blocks.get_mut(block_of(&p)) {
+                list.push((p, bucket));
+            }
+        });
+        if !any {
+            return false;
+        }
+        // The blocks in random order (Fisher–Yates), so that across a
+        // block's edge either side is as likely to be worked first.
+        self.order.clear();
+        self.order.extend(0..count);
+        for i in (1..count).rev() {
+            let j = below(&mut self.rng, i + 1);
+            self.order.swap(i, j);
+        }
+        self.pending.clear();
+        self.pending.resize(count, true);
+        for k in 0..count {
+            let Some(&b) = self.order.get(k) else {
+                break;
+            };
+            if let Some(list) = self.blocks.get_mut(b) {
+                for &(p, bucket) in list.iter() {
+                    self.scratch.push_in(p, bucket);
+                }
+                list.clear();
+            }
+            self.scratch.forget_ahead();
+            if let Some(flag) = self.pending.get_mut(b) {
+                *flag = false;
+            }
+            // Bridson's loop over the block's lowest band: a random active
+            // point of it throws its candidates; it stays active until it
+            // fails.
+            loop {
+                let window = &self.window;
+                let Some((place, parent)) = self
+                    .scratch
+                    .pick(limit, &mut self.rng, |p| window.prefetch(p))
+                else {
+                    break;
+                };
+                match self.spawn(&parent, (0, y), false) {
+                    Some(child) => {
+                        let key = child[1] + self.jitter * unit(&mut self.rng);
+                        let bucket = self.queue.bucket(key);
+                        let at = block_of(&child);
+                        if !self.queue.starts_below(bucket, limit) {
+                            self.queue.push_in(child, bucket);
+                        } else if at == b {
+                            self.scratch.push_in(child, bucket);
+                        } else if self.pending.get(at) == Some(&true)
+                            && let Some(list) = self.blocks.get_mut(at)
+                        {
+                            list.push((child, bucket));
+                        } else {
+                            self.queue.push_in(child, bucket);
+                        }
+                    }
+                    None => self.scratch.retire(place),
+                }
+            }
+        }
+        true
     }
 
     /// Seeds each pixel of row `y` with nothing within `2r`; whether any
@@ -819,4 +962,56 @@ fn near_offsets(radius: f64, size: usize) -> Vec<(isize, isize)> {
         }
     }
     offsets
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Wide windows' rounds of blocks, forced on a small raster with
+    /// blocks a few pixels wide: every pixel comes in scan order holding
+    /// only its own points, and no two points of the union are closer
+    /// than `r` (checked pair by pair).
+    #[test]
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::cast_precision_loss,
+        reason = "pixel indices and counts of a small raster"
+    )]
+    fn rounds_of_blocks_keep_the_union_and_the_scan_order() {
+        for (w, h, r, block) in [(40, 24, 0.39, 5.0), (23, 31, 0.9, 2.5), (30, 12, 0.2, 1.7)] {
+            let tiled = Tiled::builder(w, h).radius(r).build().unwrap();
+            let (wu, hu) = (w as usize, h as usize);
+            let plan = WindowPlan::sized(wu, hu, r, false, 0).unwrap();
+            assert!(plan.rows_per_round >= 1, "forced wide");
+            let tiled = Tiled { plan, ..tiled };
+            let mut stream = tiled.pixels_seeded(3);
+            stream.block_width = block;
+            let mut union = Vec::new();
+            let mut points = Vec::new();
+            for k in 0..wu * hu {
+                let at = stream.next_into(&mut points);
+                let (x, y) = ((k % wu) as u32, (k / wu) as u32);
+                assert_eq!(at, Some((x, y)), "scan order");
+                for p in &points {
+                    assert_eq!((p[0] as u32, p[1] as u32), (x, y), "{p:?} in its pixel");
+                }
+                union.extend_from_slice(&points);
+            }
+            assert_eq!(stream.next_into(&mut points), None);
+            let expected = f64::from(w * h) * 0.62 / (r * r);
+            assert!(
+                union.len() as f64 > 0.8 * expected,
+                "{w}x{h} r={r}: {} points",
+                union.len()
+            );
+            for (i, p) in union.iter().enumerate() {
+                for q in &union[i + 1..] {
+                    let d = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+                    assert!(d >= r * r, "{w}x{h} r={r}: {p:?} and {q:?} closer than r");
+                }
+            }
+        }
+    }
 }

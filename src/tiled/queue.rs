@@ -50,12 +50,54 @@ impl BandQueue {
 
     /// Queues `point` under `key` (non-negative).
     pub(crate) fn push(&mut self, point: [f64; 2], key: f64) {
+        self.push_in(point, self.bucket(key));
+    }
+
+    /// The bucket of `key` (non-negative).
+    #[inline(always)]
+    pub(crate) fn bucket(&self, key: f64) -> u64 {
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,
             reason = "a saturating cast of a non-negative key"
         )]
         let bucket = (key * self.inv_height) as u64;
+        bucket
+    }
+
+    /// Whether bucket `bucket` starts below `limit`: its points are to be
+    /// worked before the key `limit`.
+    #[inline(always)]
+    pub(crate) fn starts_below(&self, bucket: u64, limit: f64) -> bool {
+        #[expect(clippy::cast_precision_loss, reason = "bucket numbers < 2^53")]
+        let start = bucket as f64 * self.height;
+        start < limit
+    }
+
+    /// Forgets the next pick drawn ahead: its index was drawn for the
+    /// bucket's length then, and bucket numbers alone do not tell another
+    /// run of the queue's from it.
+    pub(crate) fn forget_ahead(&mut self) {
+        self.next = None;
+    }
+
+    /// Takes out every point of the buckets that start below `limit`,
+    /// lowest bucket first, handing each to `take` with its bucket.
+    pub(crate) fn drain_below(&mut self, limit: f64, mut take: impl FnMut([f64; 2], u64)) {
+        while self.buckets.front().is_some() && self.starts_below(self.base, limit) {
+            if let Some(mut list) = self.buckets.pop_front() {
+                for &p in &list {
+                    take(p, self.base);
+                }
+                list.clear();
+                self.spare.push(list);
+            }
+            self.base += 1;
+        }
+    }
+
+    /// Queues `point` in bucket `bucket`.
+    pub(crate) fn push_in(&mut self, point: [f64; 2], bucket: u64) {
         if self.buckets.is_empty() {
             self.base = bucket;
         }

@@ -53,13 +53,38 @@ pub(crate) struct WindowPlan {
     pub(crate) eta: f64,
     pub(crate) bytes: u64,
     pub(crate) lists: bool,
+    /// Whether the live rows' cells overflow the L2 cache
+    /// ([`WIDE_WINDOW`]): then the sweep prefetches each pick's cells.
+    pub(crate) wide: bool,
+    /// Wide windows, plain sweep: rows made per round of blocks of columns
+    /// (`tiled::BLOCK_CELLS`); 0 otherwise.
+    pub(crate) rows_per_round: usize,
 }
+
+/// Bytes of the live rows' cells above which a window is wide: half the
+/// L2 cache of the machines measured (1 MiB a core), leaving room for the
+/// queue and the conflict cache. Narrower windows stay in cache as they
+/// are: the sweep works them across their whole width, without
+/// prefetching (which was 1–3 % slower there).
+const WIDE_WINDOW: usize = 1 << 19;
 
 impl WindowPlan {
     /// `None` if a size overflows.
     /// `lists`: whether the window keeps per-pixel lists (the paper's
     /// scheme and exact mode).
     pub(crate) fn new(width: usize, height: usize, radius: f64, lists: bool) -> Option<Self> {
+        Self::sized(width, height, radius, lists, WIDE_WINDOW)
+    }
+
+    /// [`Self::new`], with the live rows' bytes above which the window
+    /// counts as wide (tests force the wide path on small rasters).
+    pub(crate) fn sized(
+        width: usize,
+        height: usize,
+        radius: f64,
+        lists: bool,
+        wide_above: usize,
+    ) -> Option<Self> {
         // Cells of side r/√2; more than 65 536 a pixel side is refused.
         let side = radius * core::f64::consts::FRAC_1_SQRT_2;
         if side.is_nan() || side < 1.0 / 65_536.0 {
@@ -83,7 +108,7 @@ impl WindowPlan {
         // row y, or a bucket height (r/4) more (`tiled/queue.rs`); such a
         // parent lies at most J below its key, and its children 2r below
         // it: 8.25r below the row, plus the row itself.
-        let rows_below = (whole((8.0 + super::queue::BUCKET) * radius)? + 1).min(height);
+        let below = whole((8.0 + super::queue::BUCKET) * radius)?;
         let cells = |pixels: usize| -> Option<usize> {
             #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
             let n = (pixels as f64 / side).ceil().max(1.0);
@@ -96,14 +121,39 @@ impl WindowPlan {
         // Beyond the raster there is nothing to find: the reach never needs
         // to exceed it, which also bounds the stencil for huge radii.
         let reach = whole(radius / side + eta)?.min(cells_x.max(cells_y));
-        let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
         // The grid holds only the rows the searches can reach, not whole
         // pixel rows: from `r` above the current row (its first cell row,
         // less one for rounding) to the lowest row a child can land in,
-        // `1 + (8 + BUCKET)·r` below the current row's top, plus the reach.
-        let live_rows = whole((1.0 + (9.0 + super::queue::BUCKET) * radius) / side)?
-            .checked_add(3)?
-            .min(cells_y.checked_add(1)?);
+        // `1 + (8 + BUCKET)·r` below the current row's top, plus the reach;
+        // and `rows_per_round - 1` rows more below on wide windows, whose
+        // rounds work that many rows ahead.
+        let live = |extra: usize| -> Option<usize> {
+            #[expect(clippy::cast_precision_loss, reason = "a few rows")]
+            let extra = extra as f64;
+            Some(
+                whole((1.0 + extra + (9.0 + super::queue::BUCKET) * radius) / side)?
+                    .checked_add(3)?
+                    .min(cells_y.checked_add(1)?),
+            )
+        };
+        let live_bytes = cells_x
+            .checked_add(reach.checked_mul(2)?)?
+            .checked_mul(live(0)?.checked_add(reach.checked_mul(2)?)?)?
+            .checked_mul(size_of::<[f64; 2]>())?;
+        let wide = live_bytes > wide_above;
+        // A round makes about `J = 4r` of rows: its blocks' cells are
+        // loaded about `(J + 7r + rows) / rows` times, and more rows cost
+        // window memory. The plain sweep only: exact mode's thinning is
+        // calibrated on the sweep worked across the whole width.
+        let rows_per_round = if wide && !lists {
+            whole((super::SWEEP_BAND * radius - 0.5).max(0.0))?.clamp(1, height)
+        } else {
+            0
+        };
+        let extra = rows_per_round.saturating_sub(1);
+        let rows_below = below.checked_add(1)?.checked_add(extra)?.min(height);
+        let ring_rows = rows_above.checked_add(rows_below)?.checked_add(1)?;
+        let live_rows = live(extra)?;
         let grid_bytes = RollingGrid::bytes(cells_x, live_rows, reach)?;
         let per_pixel = size_of::<u32>() + if lists { size_of::<Slot>() } else { 0 };
         let slot_bytes = width.checked_mul(ring_rows)?.checked_mul(per_pixel)?;
@@ -131,7 +181,17 @@ impl WindowPlan {
             eta,
             bytes,
             lists,
+            wide,
+            rows_per_round,
         })
+    }
+
+    /// How far below the current row's bottom the sweep's children can
+    /// land: `(8 + BUCKET)·r`, and the rows a round works ahead.
+    pub(crate) fn lead(&self, radius: f64) -> f64 {
+        #[expect(clippy::cast_precision_loss, reason = "a few rows")]
+        let extra = self.rows_per_round.saturating_sub(1) as f64;
+        (8.0 + super::queue::BUCKET) * radius + extra
     }
 
     fn ring_rows(&self) -> usize {
@@ -170,6 +230,7 @@ impl Window {
             plan.live_rows,
             plan.side,
             (radius, plan.reach, plan.eta),
+            plan.wide,
         )
         .unwrap_or_else(RollingGrid::empty);
         let pixels = plan.ring_rows() * plan.width;
@@ -261,25 +322,37 @@ impl Window {
             total += self.count(x, y) as usize;
             self.starts.push(total);
         }
+        // The spare place's cursor.
+        self.starts.push(total);
+        // One more place, at the end, for everything that is not a point
+        // of the row: every cell is written somewhere, without a branch
+        // on whether it is empty (half are, at random).
         self.row.clear();
-        self.row.resize(total, [f64::NAN; 2]);
+        self.row.resize(total + 1, [f64::NAN; 2]);
         self.cursor.clone_from(&self.starts);
         let (row, grid, next) = (&mut self.row, &self.grid, &mut self.cursor);
-        grid.for_each_in_row(y, |p| {
-            #[expect(
-                clippy::cast_possible_truncation,
-                clippy::cast_sign_loss,
-                reason = "a point of the raster"
-            )]
-            let (px, py) = (p[0] as usize, p[1] as usize);
-            if py == y
-                && let Some(at) = next.get_mut(px)
-                && let Some(slot) = row.get_mut(*at)
-            {
-                *slot = *p;
-                *at += 1;
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts < 2^32")]
+        let (top, w) = (y as f64, width as f64);
+        grid.for_each_row_of(y, |cells| {
+            for p in cells {
+                // Empty cells (at infinity) and points of other rows fail
+                // the test and go to the spare place, `width`.
+                let inside = p[1] >= top && p[1] < top + 1.0 && p[0] < w;
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    clippy::cast_sign_loss,
+                    reason = "a saturating cast; only used when inside the raster"
+                )]
+                let px = if inside { p[0] as usize } else { width };
+                if let Some(at) = next.get_mut(px) {
+                    if let Some(slot) = row.get_mut(*at) {
+                        *slot = *p;
+                    }
+                    *at += usize::from(inside);
+                }
             }
         });
+        self.row.truncate(total);
     }
 
     /// Pixel `x`'s points of the row last gathered.
