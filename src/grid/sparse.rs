@@ -270,6 +270,24 @@ impl<const N: usize> Sparse<N> {
                 let d = k - c;
                 push(k, gap(d).min(gap(d - m)).min(gap(d + m)))?;
             }
+        } else if reach <= 1 || gap(-2).min(gap(2)) * gap(-2).min(gap(2)) >= self.radius_squared {
+            // No cell past ±1 within reach: the usual case, since cells
+            // have side `>= r` and only a candidate within η of a face
+            // reaches ±2. The own cell, the nearer neighbour, the farther:
+            // already nearest first, no sort.
+            push(c, 0.0)?;
+            if reach >= 1 {
+                let (near, far) = if gap(-1) <= gap(1) { (-1, 1) } else { (1, -1) };
+                for d in [near, far] {
+                    let k = c + d;
+                    if periodic {
+                        push(k.rem_euclid(m), gap(d))?;
+                    } else if (0..m).contains(&k) {
+                        push(k, gap(d))?;
+                    }
+                }
+            }
+            return Some(n);
         } else {
             // The own cell first, for an early exit, then -1, 1, -2, 2, …
             push(c, 0.0)?;
@@ -774,6 +792,114 @@ mod tests {
                 check::<8>(1.0, [periodic; 8], 0.7, seed);
             }
         }
+    }
+
+    /// Each axis's steps are exactly the cells within reach whose gap is
+    /// below `r`, nearest first, whether listed by the short path (no cell
+    /// past ±1 in reach) or the general one (a candidate within η of a
+    /// face, a periodic axis searched whole).
+    #[test]
+    fn axis_steps_list_every_cell_in_reach_nearest_first() {
+        use crate::random::{below, seeded_rng, unit};
+        let mut rng = seeded_rng(9);
+        let (mut short, mut general) = (0, 0);
+        for (extent, periodic, r) in [
+            (1.0, false, 0.1),
+            (1.0, true, 0.1),
+            (1.0, false, 0.3),
+            (1.0, true, 0.4),
+            (0.35, true, 0.1),
+            (0.05, false, 0.1),
+        ] {
+            let d = Domain::from_extent([extent; 2])
+                .unwrap()
+                .with_periodic([periodic; 2]);
+            let g = sparse(&d, r);
+            let (m, side, reach) = (g.counts[0], g.side[0], g.reach[0]);
+            let whole = periodic && 2 * reach + 1 >= m;
+            for round in 0..3000 {
+                let c = i64::try_from(below(&mut rng, usize::try_from(m).unwrap())).unwrap();
+                // A point in cell `c`, a third of them on a face or an ulp
+                // from it, where the cell index may be off by one.
+                #[expect(clippy::cast_precision_loss, reason = "small")]
+                let face = c as f64 * side;
+                let t = match below(&mut rng, 6) {
+                    0 => face.next_up(),
+                    1 => face,
+                    2 => ((c + 1) as f64 * side).next_down(),
+                    _ => face + unit(&mut rng) * side,
+                };
+                let mut out = [Step::default(); MAX_STEPS];
+                let n = g.axis_steps(0, c, t, &mut out).unwrap();
+                let far_in_reach = (2..=reach).any(|j| {
+                    [-j, j].iter().any(|&dd| {
+                        let k = c + dd;
+                        (periodic || (0..m).contains(&k)) && {
+                            let (lo, hi) = (k as f64 * side, (k + 1) as f64 * side);
+                            let gap = (lo - t).max(t - hi).max(0.0) - g.eta * side;
+                            gap * gap < r * r
+                        }
+                    })
+                });
+                if whole || far_in_reach {
+                    general += 1;
+                } else {
+                    short += 1;
+                }
+                let steps = &out[..n];
+                assert!(
+                    steps.windows(2).all(|w| w[0].gap2 <= w[1].gap2),
+                    "round {round}: not nearest first: {steps:?}"
+                );
+                // Every cell within reach (each once on a periodic axis
+                // searched whole) whose gap, less the margin, is below r.
+                let mut expected: Vec<i64> = Vec::new();
+                let offsets: Vec<i64> = if whole {
+                    (0..m).map(|k| k - c).collect()
+                } else {
+                    (-reach..=reach).collect()
+                };
+                for dd in offsets {
+                    let k = if periodic {
+                        (c + dd).rem_euclid(m)
+                    } else {
+                        c + dd
+                    };
+                    if !(0..m).contains(&k) {
+                        continue;
+                    }
+                    let images: &[i64] = if whole { &[-1, 0, 1] } else { &[0] };
+                    let gap = images
+                        .iter()
+                        .map(|&w| {
+                            let at = c + dd + w * m;
+                            let (lo, hi) = (at as f64 * side, (at + 1) as f64 * side);
+                            (lo - t).max(t - hi).max(0.0)
+                        })
+                        .fold(f64::INFINITY, f64::min);
+                    // Plainly inside or plainly out: the margin decides
+                    // only within 2η cells of r.
+                    if gap < r * (1.0 - 4.0 * g.eta) || dd == 0 {
+                        expected.push(k);
+                    } else if gap > r + 2.0 * g.eta * side {
+                        continue;
+                    } else if steps.iter().any(|s| s.key == k) {
+                        expected.push(k);
+                    }
+                }
+                let mut listed: Vec<i64> = steps.iter().map(|s| s.key).collect();
+                listed.sort_unstable();
+                expected.sort_unstable();
+                assert_eq!(
+                    listed, expected,
+                    "extent {extent}, periodic {periodic}, r {r}, c {c}, t {t}"
+                );
+            }
+        }
+        assert!(
+            short > 1000 && general > 100,
+            "paths: {short} short, {general} general"
+        );
     }
 
     #[test]
