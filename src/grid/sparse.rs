@@ -488,31 +488,25 @@ fn first_close<const N: usize>(
 /// 56 % fewer cells in searches that find one.
 #[inline(always)]
 fn nearest_last<const N: usize>(steps: &[[Step; MAX_STEPS]; N], lens: &[usize; N]) -> [usize; N] {
-    let mut order = [0usize; N];
     let mut near = [f64::INFINITY; N];
-    for (i, ((o, g), (s, &n))) in order
-        .iter_mut()
-        .zip(&mut near)
-        .zip(steps.iter().zip(lens))
-        .enumerate()
-    {
-        *o = i;
+    for (g, (s, &n)) in near.iter_mut().zip(steps.iter().zip(lens)) {
         if n > 1 {
             *g = s.get(1).map_or(f64::INFINITY, |s| s.gap2);
         }
     }
-    // An insertion sort, farthest first: N is small.
-    for i in 1..N {
-        let mut j = i;
-        while j > 0 {
-            let (Some(&a), Some(&b)) = (order.get(j - 1), order.get(j)) else {
-                break;
-            };
-            if near.get(a) >= near.get(b) {
-                break;
-            }
-            order.swap(j - 1, j);
-            j -= 1;
+    // Farthest first, ties in axis order (a stable sort), by rank: each
+    // axis's place is the count of the axes that go before it. No branch:
+    // the gaps are random, and an insertion sort's branches were
+    // mispredicted about half the time.
+    let mut order = [0usize; N];
+    for (axis, g) in near.iter().enumerate() {
+        let rank = near
+            .iter()
+            .enumerate()
+            .map(|(other, h)| usize::from((h > g) | ((h == g) & (other < axis))))
+            .sum::<usize>();
+        if let Some(slot) = order.get_mut(rank) {
+            *slot = axis;
         }
     }
     order
