@@ -465,20 +465,29 @@ impl<const N: usize> Sparse<N> {
 
 /// The first point of the list that starts at entry `at` for which
 /// `close` holds.
+///
+/// The first entry is tested even for an empty list, whose head is the
+/// sentinel (entry 0, at infinity: never close, and always in cache): a
+/// search meets empty and occupied cells in random order, and a branch on
+/// it was mispredicted more than any other in the search (a third of them
+/// in 6-D, cachegrind's model); the loop's exit after one point is the
+/// common, predictable case.
 #[inline(always)]
 fn first_close<const N: usize>(
     entries: &[Entry<N>],
     mut at: u32,
     close: impl Fn(&[f64; N]) -> bool,
 ) -> Option<[f64; N]> {
-    while at != END {
+    loop {
         let entry = entries.get(at as usize)?;
         if close(&entry.point) {
             return Some(entry.point);
         }
         at = entry.next;
+        if at == END {
+            return None;
+        }
     }
-    None
 }
 
 /// The order in which a search walks the axes: the axis whose nearest
