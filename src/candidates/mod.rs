@@ -387,10 +387,10 @@ fn ball_point<const N: usize, R: Rng + ?Sized>(
                 *y = length * s;
             }
         }
-        if !N.is_multiple_of(2) {
-            if let Some(slot) = v.last_mut() {
-                *slot = last;
-            }
+        if !N.is_multiple_of(2)
+            && let Some(slot) = v.last_mut()
+        {
+            *slot = last;
         }
         return (v, n2);
     }

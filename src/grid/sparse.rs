@@ -288,14 +288,24 @@ impl<const N: usize> Sparse<N> {
                     ((-1, down), (1, up))
                 };
                 for (d, g) in [near, far] {
-                    let k = if periodic { (c + d).rem_euclid(m) } else { c + d };
+                    let k = if periodic {
+                        (c + d).rem_euclid(m)
+                    } else {
+                        c + d
+                    };
                     let gap2 = g * g;
                     #[expect(
                         clippy::cast_sign_loss,
-                        reason = "a key of -1 (no such cell) makes a stray offset, never counted"
+                        clippy::cast_possible_truncation,
+                        reason = "keys are in -1..=counts, whose product fits usize in the \
+                                  array store; -1 (no such cell) makes a stray offset, never counted"
                     )]
                     let offset = (k as usize).wrapping_mul(stride);
-                    *out.get_mut(n)? = Step { gap2, key: k, offset };
+                    *out.get_mut(n)? = Step {
+                        gap2,
+                        key: k,
+                        offset,
+                    };
                     n += usize::from((k >= 0) & (k < m) & (gap2 < self.radius_squared));
                 }
             }
