@@ -18,7 +18,7 @@
 use super::{NeighbourGrid, SparsePlan};
 use crate::budget::{bytes_of, reserve_one, vec_bytes};
 use crate::domain::Domain;
-use crate::vector::periodic_distance_squared;
+use crate::vector::{distance_squared, periodic_distance_squared};
 use core::hash::{BuildHasherDefault, Hasher};
 use smallvec::SmallVec;
 use std::collections::HashMap;
@@ -168,6 +168,7 @@ pub(crate) struct Sparse<const N: usize> {
     reach: [i64; N],
     eta: f64,
     periodic: [bool; N],
+    any_periodic: bool,
     periods: [f64; N],
     radius_squared: f64,
 }
@@ -190,6 +191,7 @@ impl<const N: usize> Sparse<N> {
             reach: plan.reach,
             eta: plan.eta,
             periodic: domain.periodic(),
+            any_periodic: domain.any_periodic(),
             periods: domain.periods(),
             radius_squared: radius * radius,
         }
@@ -442,11 +444,38 @@ impl<const N: usize> Sparse<N> {
         }
     }
 
-    /// A stored point of `cell` closer than `r` to `p`, if any.
+    /// [`NeighbourGrid::conflict`], with `close` the exact test.
     #[inline(always)]
-    fn conflict_in(&self, cell: &[i64; N], p: &[f64; N]) -> Option<[f64; N]> {
-        let close =
-            |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < self.radius_squared;
+    fn conflict_with(
+        &self,
+        p: &[f64; N],
+        close: impl Fn(&[f64; N]) -> bool + Copy,
+    ) -> Option<[f64; N]> {
+        // The candidate's own cell first: it holds the conflict in a third
+        // of the searches that find one in 5-D and 6-D (a fifth in 8-D),
+        // and those skip listing the axes' steps. The walk visits it again
+        // when it holds none, which costs less than a list of steps.
+        let cell = self.cell_of(p);
+        if let Some(q) = self.conflict_in(&cell, close) {
+            return Some(q);
+        }
+        let mut steps = [[Step::default(); MAX_STEPS]; N];
+        let mut lens = [0usize; N];
+        // More steps than the plan allows cannot happen; were it to, the
+        // candidate is refused: the set stays valid.
+        if self.steps(p, &cell, &mut steps, &mut lens).is_none() {
+            return Some(*p);
+        }
+        self.search(&steps, &lens, close)
+    }
+
+    /// A stored point of `cell` for which `close` holds, if any.
+    #[inline(always)]
+    fn conflict_in(
+        &self,
+        cell: &[i64; N],
+        close: impl Fn(&[f64; N]) -> bool + Copy,
+    ) -> Option<[f64; N]> {
         match &self.store {
             Store::Array {
                 heads,
@@ -467,10 +496,9 @@ impl<const N: usize> Sparse<N> {
         &self,
         steps: &[[Step; MAX_STEPS]; N],
         lens: &[usize; N],
-        p: &[f64; N],
+        close: impl Fn(&[f64; N]) -> bool + Copy,
     ) -> Option<[f64; N]> {
         let r2 = self.radius_squared;
-        let close = |q: &[f64; N]| periodic_distance_squared(p, q, &self.periods) < r2;
         let order = nearest_last(steps, lens);
         match &self.store {
             Store::Array { heads, entries, .. } => {
@@ -545,22 +573,15 @@ fn nearest_last<const N: usize>(steps: &[[Step; MAX_STEPS]; N], lens: &[usize; N
 
 impl<const N: usize> NeighbourGrid<N> for Sparse<N> {
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
-        // The candidate's own cell first: it holds the conflict in a third
-        // of the searches that find one in 5-D and 6-D (a fifth in 8-D),
-        // and those skip listing the axes' steps. The walk visits it again
-        // when it holds none, which costs less than a list of steps.
-        let cell = self.cell_of(p);
-        if let Some(q) = self.conflict_in(&cell, p) {
-            return Some(q);
+        // Squares summed in axis order either way; on a bounded box
+        // without the per-axis test for a period (`|x - y|` squares as
+        // `x - y` does: the same bits).
+        let r2 = self.radius_squared;
+        if self.any_periodic {
+            self.conflict_with(p, |q| periodic_distance_squared(p, q, &self.periods) < r2)
+        } else {
+            self.conflict_with(p, |q| distance_squared(p, q) < r2)
         }
-        let mut steps = [[Step::default(); MAX_STEPS]; N];
-        let mut lens = [0usize; N];
-        // More steps than the plan allows cannot happen; were it to, the
-        // candidate is refused: the set stays valid.
-        if self.steps(p, &cell, &mut steps, &mut lens).is_none() {
-            return Some(*p);
-        }
-        self.search(&steps, &lens, p)
     }
 
     fn bytes(&self) -> u64 {
