@@ -687,3 +687,156 @@ fn put<const N: usize>(
     }
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{GridLayout, GridPlan, plan};
+    use super::*;
+
+    fn bricks(domain: &Domain<3>, r: f64) -> Bricks<3> {
+        match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
+            Ok(GridPlan::Dense(p)) => {
+                assert!(p.bricked, "3-D plans bricks");
+                Bricks::try_new(&p, domain, r).expect("allocates")
+            }
+            other => panic!("no dense plan: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_brick_is_five_cache_lines() {
+        assert_eq!(size_of::<Brick<3>>(), 320, "13 points, count, spill");
+        assert_eq!(align_of::<Brick<3>>(), 64, "line-aligned");
+    }
+
+    /// Every cell of the padded grid has its own address, and the cells of
+    /// a brick share one line.
+    #[test]
+    fn addresses_are_distinct_and_bricked() {
+        let g = bricks(&Domain::from_extent([1.0, 0.3, 0.5]).unwrap(), 0.1);
+        let padded: [usize; 3] =
+            core::array::from_fn(|i| g.geometry.counts[i] + 2 * g.geometry.pad[i]);
+        let mut seen = vec![false; g.cells.len()];
+        for z in 0..padded[2] {
+            for y in 0..padded[1] {
+                for x in 0..padded[0] {
+                    let a = g.geometry.address_of(&[x, y, z]);
+                    assert!(!seen[a], "address {a} twice");
+                    seen[a] = true;
+                    let corner = g.geometry.address_of(&[x & !3, y & !3, z & !3]);
+                    assert_eq!(a / BRICK_CELLS, corner / BRICK_CELLS, "({x}, {y}, {z})");
+                }
+            }
+        }
+    }
+
+    /// As the `u32` grid's test: a conflict is found exactly when a brute
+    /// force over every stored point finds one, for candidates on cell and
+    /// part faces, a hair either side, and at random; in boxes with a reach
+    /// of 1, 2 and 3 cells, bounded and periodic (ghosts).
+    #[test]
+    fn conflicts_agree_with_brute_force() {
+        fn check(domain: Domain<3>, r: f64, seed: u64) -> [usize; 3] {
+            let mut g = bricks(&domain, r);
+            let mut rng = crate::random::seeded_rng(seed);
+            let mut stored: Vec<[f64; 3]> = Vec::new();
+            let side = g.inv_side.map(|s| 1.0 / s);
+            let counts = g.geometry.counts;
+            let periods = domain.periods();
+            let coordinate = |axis: usize, rng: &mut crate::random::DefaultRng| {
+                let u = crate::random::unit(rng);
+                let cell = (u * counts[axis] as f64).floor();
+                let frac = match crate::random::below(rng, 6) {
+                    0 => 0.0,
+                    1 => 0.5,
+                    2 => 0.5 - 1e-12,
+                    3 => 1.0 - 1e-12,
+                    4 => 1e-12,
+                    _ => crate::random::unit(rng),
+                };
+                let x = domain.lo()[axis] + (cell + frac) * side[axis];
+                x.clamp(domain.lo()[axis], domain.hi()[axis] - side[axis] * 1e-9)
+            };
+            let (mut hits, mut misses) = (0, 0);
+            for _ in 0..3000 {
+                let p: [f64; 3] = core::array::from_fn(|axis| coordinate(axis, &mut rng));
+                let brute = stored
+                    .iter()
+                    .any(|q| periodic_distance_squared(&p, q, &periods) < r * r);
+                assert_eq!(g.conflict(&p).is_some(), brute, "{p:?}, r = {r}");
+                if brute {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                    assert!(g.reserve(&p, u64::MAX), "reserve");
+                    if g.insert(p) {
+                        stored.push(p);
+                    }
+                }
+            }
+            assert!(hits > 300 && misses >= 5, "{hits} hits, {misses} misses");
+            g.reach
+        }
+        let unit = Domain::from_extent([1.0, 0.8, 0.6]).unwrap();
+        assert_eq!(check(unit.clone(), 0.1, 3), [2; 3], "reach");
+        check(unit.clone().with_periodic([true, false, true]), 0.1, 4);
+        // Reach 3 (4 cells a side), and 1 (2 cells).
+        let reach = check(Domain::from_extent([0.0101; 3]).unwrap(), 0.0058, 5);
+        assert_eq!(reach, [3; 3], "reach");
+        let reach = check(Domain::from_extent([0.5, 0.4, 0.3]).unwrap(), 0.3, 6);
+        assert_eq!(reach, [2, 2, 1], "reach");
+        // Periods shorter than the padding: several ghosts a point.
+        check(
+            Domain::from_extent([0.15, 1.0, 0.1])
+                .unwrap()
+                .with_periodic([true, false, true]),
+            0.1,
+            7,
+        );
+    }
+
+    /// A brick filled past its own room spills, and its points are still
+    /// found, within the reserved bytes.
+    #[test]
+    fn full_bricks_spill() {
+        let domain = Domain::from_extent([1.0; 3]).unwrap();
+        let r = 0.1;
+        let mut g = bricks(&domain, r);
+        let side = 1.0 / g.inv_side[0];
+        let before = g.bytes();
+        // Every cell of one brick (cells 2 to 5 a side, padded 4 to 7; not
+        // a valid set: the grid stores what it is given).
+        assert_eq!(g.geometry.pad, [2; 3], "padding");
+        let mut stored = Vec::new();
+        for z in 2..6 {
+            for y in 2..6 {
+                for x in 2..6 {
+                    let p = [x, y, z].map(|i| (f64::from(i) + 0.5) * side);
+                    assert!(g.reserve(&p, u64::MAX), "reserve");
+                    assert!(g.insert(p), "insert {p:?}");
+                    stored.push(p);
+                }
+            }
+        }
+        assert!(!g.spill.is_empty(), "spilled");
+        assert!(g.bytes() > before, "the spill is counted");
+        for p in &stored {
+            let q = g.conflict(p).expect("found");
+            assert!(distance_squared(p, &q) < r * r, "{p:?}");
+            let mut n = 0;
+            g.seed(p, 32, |_| n += 1);
+            assert!(n >= 16, "seed from {p:?}: {n}");
+        }
+        // No room for a spill chunk: refused before anything is stored.
+        let mut h = bricks(&domain, r);
+        for p in stored.iter().take(CAPACITY) {
+            assert!(h.insert(*p), "within the brick");
+        }
+        assert!(!h.reserve(&stored[CAPACITY], 0), "no spare bytes");
+        assert!(!h.insert(stored[CAPACITY]), "no room reserved");
+        assert!(
+            h.conflict(&stored[CAPACITY]).is_some(),
+            "its neighbours are"
+        );
+    }
+}
