@@ -66,23 +66,24 @@ const fn brick_bits(n: usize) -> usize {
     if n == 0 { 6 } else { 6 / n }
 }
 
-/// The points of one brick of cells.
+/// The points of one brick of cells, its count first: `insert` reads it,
+/// and the first line is the one a search has asked for.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 struct Brick<const N: usize> {
-    /// Slots `1..=CAPACITY`.
-    points: [[f64; N]; CAPACITY],
     /// Points stored (home and ghosts), at most [`BRICK_CELLS`].
     count: u8,
     /// `1 +` the start of this brick's chunk in [`Bricks::spill`], or 0.
     spill: u32,
+    /// Slots `1..=CAPACITY`.
+    points: [[f64; N]; CAPACITY],
 }
 
 impl<const N: usize> Brick<N> {
     const EMPTY: Self = Self {
-        points: [[f64::INFINITY; N]; CAPACITY],
         count: 0,
         spill: 0,
+        points: [[f64::INFINITY; N]; CAPACITY],
     };
 }
 
@@ -168,6 +169,13 @@ fn entries<const N: usize>(stencil: &Stencil) -> Option<Vec<[u8; N]>> {
 }
 
 impl<const N: usize> Geometry<N> {
+    /// The address of a cell inside the box.
+    fn home(&self, cell: &[usize; N]) -> usize {
+        self.address_of(&core::array::from_fn(|i| {
+            cell.get(i).copied().unwrap_or(0) + self.pad.get(i).copied().unwrap_or(0)
+        }))
+    }
+
     /// The address of a padded cell.
     fn address_of(&self, padded: &[usize; N]) -> usize {
         padded
@@ -403,7 +411,8 @@ impl<const N: usize> Bricks<N> {
     }
 
     /// Asks for the bricks of a window within `reach`: per brick its
-    /// cells' line and the two lines that hold its first points. With a
+    /// cells' line and the three lines that hold its first 7 points (a
+    /// brick holds 6.7 on average). With a
     /// reach of 2 (every box over 4 cells a side) the window spans exactly
     /// 2 bricks per axis, found from the first by [`Self::corners`]; else
     /// the bricks of the reach box's corners.
@@ -414,6 +423,7 @@ impl<const N: usize> Bricks<N> {
             if let Some(b) = self.bricks.get(address / BRICK_CELLS) {
                 crate::prefetch::prefetch(&b.points, 0);
                 crate::prefetch::prefetch(&b.points, 3);
+                crate::prefetch::prefetch(&b.points, 6);
             }
         };
         if self.corners.is_empty() {
@@ -508,6 +518,13 @@ impl<const N: usize> Bricks<N> {
     /// each placement whose brick has none and could fill past
     /// [`CAPACITY`] (bricks met twice counted twice: an upper bound).
     fn spill_needed(&self, cell: &[usize; N]) -> usize {
+        if !self.geometry.any_periodic {
+            let home = self.geometry.home(cell);
+            return match self.bricks.get(home / BRICK_CELLS) {
+                Some(b) if b.spill == 0 && usize::from(b.count) >= CAPACITY => SPILL,
+                _ => 0,
+            };
+        }
         let mut total = 0usize;
         self.geometry.placements(cell, |_| total += 1);
         let mut needed = 0usize;
@@ -608,9 +625,7 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
     #[inline(always)]
     fn insert(&mut self, p: [f64; N]) -> bool {
         let (cell, _) = locate(&p, &self.lo, &self.inv_side, &self.last, 1);
-        let home = self.geometry.address_of(&core::array::from_fn(|i| {
-            cell.get(i).copied().unwrap_or(0) + self.geometry.pad.get(i).copied().unwrap_or(0)
-        }));
+        let home = self.geometry.home(&cell);
         // Occupied only if rounding put two valid points in one cell: drop
         // the newcomer, the set stays valid. Every placement is checked for
         // room before any is written, so a point is stored with all its

@@ -1,10 +1,15 @@
 //! The background grid: which layout, how big, and which neighbour cells a
 //! candidate must be checked against.
 //!
-//! Two layouts implement [`NeighbourGrid`]:
+//! Three layouts implement [`NeighbourGrid`]:
 //! - [`dense::Dense`]: Bridson's grid of cells of side `<= r/√N`, each
 //!   holding the `u32` index of at most one point. Fast, memory ∝ box
 //!   volume (4 bytes a cell) plus the points.
+//! - [`bricks::Bricks`]: the same cells in 3-D, in bricks of 4×4×4 byte
+//!   cells with each brick's points stored beside it (6 bytes a cell, the
+//!   points included), so that a search's cache lines are few and known
+//!   from its cell. Used for [`GridLayout::Dense`] in 3-D wherever it fits
+//!   the budget, the `u32` grid otherwise.
 //! - [`sparse::Sparse`]: a hash map from cells of side `≈ r` to the points
 //!   in them. Memory ∝ number of points, whatever the box. Chosen from 5-D
 //!   up, or when the dense grid would not fit the budget.
