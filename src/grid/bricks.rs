@@ -61,9 +61,14 @@ pub(crate) const fn applies(n: usize) -> bool {
 }
 
 /// Bits of a cell coordinate inside its brick, per axis: 2 in 3-D (4
-/// cells), so that a brick holds [`BRICK_CELLS`] cells.
+/// cells), so that a brick holds [`BRICK_CELLS`] cells (the only
+/// dimension [`applies`] allows; 1-D and 2-D would take 6 and 3).
 const fn brick_bits(n: usize) -> usize {
-    if n == 0 { 6 } else { 6 / n }
+    match n {
+        1 => 6,
+        2 => 3,
+        _ => 2,
+    }
 }
 
 /// The points of one brick of cells, its count first: `insert` reads it,
@@ -793,8 +798,8 @@ mod tests {
             g.reach
         }
         let unit = Domain::from_extent([1.0, 0.8, 0.6]).unwrap();
-        assert_eq!(check(unit.clone(), 0.1, 3), [2; 3], "reach");
-        check(unit.clone().with_periodic([true, false, true]), 0.1, 4);
+        assert_eq!(check(unit, 0.1, 3), [2; 3], "reach");
+        check(unit.with_periodic([true, false, true]), 0.1, 4);
         // Reach 3 (4 cells a side), and 1 (2 cells).
         let reach = check(Domain::from_extent([0.0101; 3]).unwrap(), 0.0058, 5);
         assert_eq!(reach, [3; 3], "reach");
