@@ -25,11 +25,10 @@
 //! a stencil entry is a triple of indices into the candidate's window of
 //! those terms, so one stencil serves every position inside a brick.
 
-use super::dense::{Stencil, StencilShape, locate, parts};
+use super::dense::{Stencil, StencilShape, closer, for_each_image, locate, parts};
 use super::{DensePlan, NeighbourGrid};
 use crate::budget::{bytes_of, vec_bytes};
 use crate::domain::Domain;
-use crate::vector::{distance_squared, periodic_distance_squared};
 
 /// Cells in a brick: one cache line of byte cells.
 const BRICK_CELLS: usize = 64;
@@ -195,48 +194,11 @@ impl<const N: usize> Geometry<N> {
     /// period is shorter than the padding), as [`super::dense::Dense`]
     /// writes them.
     fn placements(&self, cell: &[usize; N], mut f: impl FnMut(usize)) {
-        let mut home = [0usize; N];
-        let mut first = [0usize; N];
-        let mut limit = [0usize; N];
-        let axes = cell
-            .iter()
-            .zip(&self.pad)
-            .zip(self.counts.iter().zip(&self.periods));
-        for (((h, fst), l), ((&c, &pad), (&m, &period))) in
-            home.iter_mut().zip(&mut first).zip(&mut limit).zip(axes)
-        {
-            *h = c + pad;
-            (*fst, *l) = if period > 0.0 {
-                (*h % m, m + 2 * pad)
-            } else {
-                (*h, *h + 1)
-            };
-        }
-        f(self.address_of(&home));
-        if !self.any_periodic {
-            return;
-        }
-        let mut at = first;
-        loop {
-            if at != home {
-                f(self.address_of(&at));
-            }
-            let mut stepped = false;
-            let axes = first
-                .iter()
-                .zip(&limit)
-                .zip(self.counts.iter().zip(&self.periods));
-            for (a, ((&fst, &l), (&m, &period))) in at.iter_mut().zip(axes) {
-                *a += m;
-                if *a < l && period > 0.0 {
-                    stepped = true;
-                    break;
-                }
-                *a = fst;
-            }
-            if !stepped {
-                return;
-            }
+        f(self.home(cell));
+        if self.any_periodic {
+            for_each_image(cell, &self.pad, &self.counts, &self.periods, |at| {
+                f(self.address_of(at));
+            });
         }
     }
 }
@@ -454,14 +416,23 @@ impl<const N: usize> Bricks<N> {
     ) -> usize {
         let mut n = 0;
         for entry in entries {
-            let address = Self::address(window, entry);
-            let slot = self.slot(address);
-            if let Some(f) = found.get_mut(n % M) {
-                *f = address;
-            }
-            n += usize::from(slot != 0);
+            n = self.note(Self::address(window, entry), found, n);
         }
         n
+    }
+
+    /// Notes the cell at `address` in `found` after the `n` occupied
+    /// ones, without a branch; returns `n + 1` if it is occupied, else `n`
+    /// (so the next cell overwrites it). Past `M` occupied cells, later
+    /// ones overwrite earlier ones, which only the seed can meet, and any
+    /// subset suits it.
+    #[inline(always)]
+    fn note<const M: usize>(&self, address: usize, found: &mut [usize; M], n: usize) -> usize {
+        let slot = self.slot(address);
+        if let Some(f) = found.get_mut(n % M) {
+            *f = address;
+        }
+        n + usize::from(slot != 0)
     }
 
     /// [`Self::occupied`] for the cells within 2 of a 3-D window's centre
@@ -481,11 +452,7 @@ impl<const N: usize> Bricks<N> {
             for &y in &w1[1..6] {
                 let row = plane + y;
                 for address in [row + x0, row + x1, row + x2, row + x3, row + x4] {
-                    let slot = self.slot(address);
-                    if let Some(f) = found.get_mut(n % M) {
-                        *f = address;
-                    }
-                    n += usize::from(slot != 0);
+                    n = self.note(address, found, n);
                 }
             }
         }
@@ -506,12 +473,7 @@ impl<const N: usize> Bricks<N> {
                 let Some(q) = self.point(address) else {
                     continue;
                 };
-                let d2 = if PERIODIC {
-                    periodic_distance_squared(p, q, &self.periods)
-                } else {
-                    distance_squared(p, q)
-                };
-                if d2 < self.radius_squared {
+                if closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared) {
                     return Some(*q);
                 }
             }
@@ -712,6 +674,7 @@ fn put<const N: usize>(
 mod tests {
     use super::super::{GridLayout, GridPlan, plan};
     use super::*;
+    use crate::vector::{distance_squared, periodic_distance_squared};
 
     fn bricks(domain: &Domain<3>, r: f64) -> Bricks<3> {
         match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
@@ -764,18 +727,13 @@ mod tests {
             let counts = g.geometry.counts;
             let periods = domain.periods();
             let coordinate = |axis: usize, rng: &mut crate::random::DefaultRng| {
-                let u = crate::random::unit(rng);
-                let cell = (u * counts[axis] as f64).floor();
-                let frac = match crate::random::below(rng, 6) {
-                    0 => 0.0,
-                    1 => 0.5,
-                    2 => 0.5 - 1e-12,
-                    3 => 1.0 - 1e-12,
-                    4 => 1e-12,
-                    _ => crate::random::unit(rng),
-                };
-                let x = domain.lo()[axis] + (cell + frac) * side[axis];
-                x.clamp(domain.lo()[axis], domain.hi()[axis] - side[axis] * 1e-9)
+                super::super::dense::probe(
+                    rng,
+                    domain.lo()[axis],
+                    domain.hi()[axis],
+                    side[axis],
+                    counts[axis],
+                )
             };
             let (mut hits, mut misses) = (0, 0);
             for _ in 0..3000 {
