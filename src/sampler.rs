@@ -580,6 +580,7 @@ impl<const N: usize> PoissonDisk<N> {
                 return Err(bad);
             }
             let stored = match &mut it.grid {
+                Grid::Bricks(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Dense(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Sparse(g) => place(g, &mut it.active, *p, it.budget),
             };
@@ -748,6 +749,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Iter<N, R, G> {
                 error,
             };
             match grid {
+                Grid::Bricks(g) => state.grow(g),
                 Grid::Dense(g) => state.grow(g),
                 Grid::Sparse(g) => state.grow(g),
             }
@@ -764,6 +766,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Iter<N, R, G> {
                 first = first_point(&self.domain, &mut self.rng);
             }
             let stored = match &mut self.grid {
+                Grid::Bricks(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
             };
@@ -846,6 +849,7 @@ impl<const N: usize, R, G> Iter<N, R, G> {
     /// list. Never above [`PoissonDisk::max_grid_bytes`].
     pub fn heap_bytes(&self) -> u64 {
         let grid = match &self.grid {
+            Grid::Bricks(g) => g.bytes(),
             Grid::Dense(g) => g.bytes(),
             Grid::Sparse(g) => g.bytes(),
         };
@@ -857,7 +861,7 @@ impl<const N: usize, R, G> Iter<N, R, G> {
     /// failed and the sampler fell back).
     pub fn layout(&self) -> GridLayout {
         match self.grid {
-            Grid::Dense(_) => GridLayout::Dense,
+            Grid::Bricks(_) | Grid::Dense(_) => GridLayout::Dense,
             Grid::Sparse(_) => GridLayout::Sparse,
         }
     }

@@ -237,12 +237,7 @@ impl<const N: usize> Dense<N> {
                 let Some(q) = self.points.get(index as usize) else {
                     continue;
                 };
-                let d2 = if PERIODIC {
-                    periodic_distance_squared(p, q, &self.periods)
-                } else {
-                    distance_squared(p, q)
-                };
-                if d2 < self.radius_squared {
+                if closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared) {
                     return Some(*q);
                 }
             }
@@ -253,51 +248,80 @@ impl<const N: usize> Dense<N> {
     /// Writes `p` into every ghost cell that stands for its cell across a
     /// periodic face (several when the period is shorter than the padding).
     fn write_images(&mut self, cell: &[usize; N], index: u32) {
-        // Per axis, in padded coordinates: the home cell, the first image
-        // and the end of the images (step `counts`); bounded axes have one.
-        let mut home = [0usize; N];
-        let mut first = [0usize; N];
-        let mut limit = [0usize; N];
-        let axes = cell
-            .iter()
-            .zip(&self.pad)
-            .zip(self.counts.iter().zip(&self.periods));
-        for (((h, f), l), ((&c, &pad), (&m, &period))) in
-            home.iter_mut().zip(&mut first).zip(&mut limit).zip(axes)
-        {
-            *h = c + pad;
-            (*f, *l) = if period > 0.0 {
-                (*h % m, m + 2 * pad)
-            } else {
-                (*h, *h + 1)
-            };
+        let (stride, cells) = (self.stride, &mut self.cells);
+        for_each_image(cell, &self.pad, &self.counts, &self.periods, |at| {
+            let at_index: usize = at.iter().zip(&stride).map(|(c, s)| c * s).sum();
+            if let Some(slot) = cells.get_mut(at_index) {
+                *slot = index;
+            }
+        });
+    }
+}
+
+/// Whether `q` is closer than `r` to `p` (squared: `radius_squared`),
+/// toroidally on the axes with a period if `PERIODIC`: the grids' exact
+/// test.
+#[inline(always)]
+pub(crate) fn closer<const PERIODIC: bool, const N: usize>(
+    p: &[f64; N],
+    q: &[f64; N],
+    periods: &[f64; N],
+    radius_squared: f64,
+) -> bool {
+    let d2 = if PERIODIC {
+        periodic_distance_squared(p, q, periods)
+    } else {
+        distance_squared(p, q)
+    };
+    d2 < radius_squared
+}
+
+/// Calls `f` with the padded coordinates of every ghost cell that stands
+/// for `cell` (a cell inside the box) across periodic faces: several on an
+/// axis whose period is shorter than the padding, none on a bounded box.
+/// Shared by [`Dense`] and the bricked grid.
+pub(crate) fn for_each_image<const N: usize>(
+    cell: &[usize; N],
+    pad: &[usize; N],
+    counts: &[usize; N],
+    periods: &[f64; N],
+    mut f: impl FnMut(&[usize; N]),
+) {
+    // Per axis, in padded coordinates: the home cell, the first image and
+    // the end of the images (step `counts`); bounded axes have one.
+    let mut home = [0usize; N];
+    let mut first = [0usize; N];
+    let mut limit = [0usize; N];
+    let axes = cell.iter().zip(pad).zip(counts.iter().zip(periods));
+    for (((h, fst), l), ((&c, &pad), (&m, &period))) in
+        home.iter_mut().zip(&mut first).zip(&mut limit).zip(axes)
+    {
+        *h = c + pad;
+        (*fst, *l) = if period > 0.0 {
+            (*h % m, m + 2 * pad)
+        } else {
+            (*h, *h + 1)
+        };
+    }
+    let mut at = first;
+    loop {
+        if at != home {
+            f(&at);
         }
-        let mut at = first;
-        loop {
-            if at != home {
-                let at_index = self.index(&at);
-                if let Some(slot) = self.cells.get_mut(at_index) {
-                    *slot = index;
-                }
+        // Odometer over the images of every axis: step the first axis that
+        // has another image, resetting the axes before it.
+        let mut stepped = false;
+        let axes = first.iter().zip(&limit).zip(counts.iter().zip(periods));
+        for (a, ((&fst, &l), (&m, &period))) in at.iter_mut().zip(axes) {
+            *a += m;
+            if *a < l && period > 0.0 {
+                stepped = true;
+                break;
             }
-            // Odometer over the images of every axis: step the first axis
-            // that has another image, resetting the axes before it.
-            let mut stepped = false;
-            let axes = first
-                .iter()
-                .zip(&limit)
-                .zip(self.counts.iter().zip(&self.periods));
-            for (a, ((&f, &l), (&m, &period))) in at.iter_mut().zip(axes) {
-                *a += m;
-                if *a < l && period > 0.0 {
-                    stepped = true;
-                    break;
-                }
-                *a = f;
-            }
-            if !stepped {
-                return;
-            }
+            *a = fst;
+        }
+        if !stepped {
+            return;
         }
     }
 }
@@ -586,6 +610,31 @@ impl Stencil {
     }
 }
 
+/// A coordinate for the grids' search tests, on an axis from `lo` to `hi`
+/// of `cells` cells of side `side`: in a random cell, on its face, on the
+/// face between its parts, a hair either side of one, or anywhere.
+#[cfg(test)]
+pub(crate) fn probe(
+    rng: &mut crate::random::DefaultRng,
+    lo: f64,
+    hi: f64,
+    side: f64,
+    cells: usize,
+) -> f64 {
+    let u = crate::random::unit(rng);
+    let cell = (u * cells as f64).floor();
+    let frac = match crate::random::below(rng, 6) {
+        0 => 0.0,
+        1 => 0.5,
+        2 => 0.5 - 1e-12,
+        3 => 1.0 - 1e-12,
+        4 => 1e-12,
+        _ => crate::random::unit(rng),
+    };
+    let x = lo + (cell + frac) * side;
+    x.clamp(lo, hi - side * 1e-9)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{GridLayout, GridPlan, plan};
@@ -655,19 +704,13 @@ mod tests {
             // A position on one axis: a cell face, a part face, a hair off
             // one, or uniform.
             let coordinate = |axis: usize, rng: &mut crate::random::DefaultRng| {
-                let u = crate::random::unit(rng);
-                let cell = (u * counts[axis] as f64).floor();
-                let kind = crate::random::below(rng, 6);
-                let frac = match kind {
-                    0 => 0.0,
-                    1 => 0.5,
-                    2 => 0.5 - 1e-12,
-                    3 => 1.0 - 1e-12,
-                    4 => 1e-12,
-                    _ => crate::random::unit(rng),
-                };
-                let x = domain.lo()[axis] + (cell + frac) * side[axis];
-                x.clamp(domain.lo()[axis], domain.hi()[axis] - side[axis] * 1e-9)
+                probe(
+                    rng,
+                    domain.lo()[axis],
+                    domain.hi()[axis],
+                    side[axis],
+                    counts[axis],
+                )
             };
             let (mut hits, mut misses) = (0, 0);
             for _ in 0..4000 {

@@ -1,10 +1,15 @@
 //! The background grid: which layout, how big, and which neighbour cells a
 //! candidate must be checked against.
 //!
-//! Two layouts implement [`NeighbourGrid`]:
+//! Three layouts implement [`NeighbourGrid`]:
 //! - [`dense::Dense`]: Bridson's grid of cells of side `<= r/√N`, each
 //!   holding the `u32` index of at most one point. Fast, memory ∝ box
 //!   volume (4 bytes a cell) plus the points.
+//! - [`bricks::Bricks`]: the same cells in 3-D, in bricks of 4×4×4 byte
+//!   cells with each brick's points stored beside it (6 bytes a cell, the
+//!   points included), so that a search's cache lines are few and known
+//!   from its cell. Used for [`GridLayout::Dense`] in 3-D wherever it fits
+//!   the budget, the `u32` grid otherwise.
 //! - [`sparse::Sparse`]: a hash map from cells of side `≈ r` to the points
 //!   in them. Memory ∝ number of points, whatever the box. Chosen from 5-D
 //!   up, or when the dense grid would not fit the budget.
@@ -17,6 +22,7 @@
 //! side and a margin `η` (in cells) that bounds that rounding, so a point
 //! closer than `r` is always found.
 
+pub(crate) mod bricks;
 pub(crate) mod dense;
 pub(crate) mod sparse;
 
@@ -66,6 +72,10 @@ pub(crate) struct DensePlan<const N: usize> {
     pub(crate) side: [f64; N],
     pub(crate) reach: [usize; N],
     pub(crate) eta: f64,
+    /// Whether the cells are laid out in bricks with their points
+    /// ([`bricks::Bricks`], 3-D) rather than as `u32` indices
+    /// ([`dense::Dense`]).
+    pub(crate) bricked: bool,
     /// What the grid allocates before its first point: the padded cells
     /// and the search stencils (a bound on their peak while built), plus
     /// the first point and its active entry.
@@ -157,6 +167,7 @@ fn plan_dense<const N: usize>(
     domain: &Domain<N>,
     radius: f64,
     max_points: Option<u64>,
+    bricked: bool,
 ) -> Result<DensePlan<N>, u64> {
     let extent = domain.extent();
     #[expect(clippy::cast_precision_loss, reason = "N is small")]
@@ -175,10 +186,13 @@ fn plan_dense<const N: usize>(
     let max_cells = counts.iter().copied().max().unwrap_or(1);
     let eta = rounding_margin(to_f64(max_cells));
     let mut reach = [0usize; N];
+    let mut padded_cells = [0u64; N];
     let mut total: u64 = 1;
     let mut window: u64 = 1;
     let axes = side.iter().zip(&counts).zip(domain.periodic());
-    for (r, ((&s, &m), periodic)) in reach.iter_mut().zip(axes) {
+    for ((r, padded_axis), ((&s, &m), periodic)) in
+        reach.iter_mut().zip(&mut padded_cells).zip(axes)
+    {
         // Cells at |d| are needed while (|d| - 1 - η)·side < r, up to what
         // the axis holds: on a bounded axis two cells of the box are at
         // most `m - 1` apart; on a periodic one every cell has an image
@@ -187,11 +201,16 @@ fn plan_dense<const N: usize>(
         *r = usize::try_from(p).map_err(|_| u64::MAX)?;
         let side_cells = p.checked_mul(2).ok_or(u64::MAX)?;
         let padded = m.checked_add(side_cells).ok_or(u64::MAX)?;
+        *padded_axis = padded;
         total = total.checked_mul(padded).ok_or(u64::MAX)?;
         window = window.checked_mul(side_cells + 1).ok_or(u64::MAX)?;
     }
-    // Cells hold u32 indices.
-    let cell_bytes = total.checked_mul(4).ok_or(u64::MAX)?;
+    // Cells hold u32 indices, or bricks hold the cells and their points.
+    let cell_bytes = if bricked {
+        bricks::bytes_for(&padded_cells).ok_or(u64::MAX)?
+    } else {
+        total.checked_mul(4).ok_or(u64::MAX)?
+    };
     let stencil_bytes = window
         .checked_mul(dense::stencil_bytes_per_cell(N))
         .ok_or(u64::MAX)?;
@@ -229,6 +248,7 @@ fn plan_dense<const N: usize>(
         side,
         reach,
         eta,
+        bricked,
         bytes,
         bytes_when_full: bytes.saturating_add(when_full),
     })
@@ -338,7 +358,21 @@ pub(crate) fn plan<const N: usize>(
             return Err(Error::BoxTooWide { axis });
         }
     }
-    let dense = || plan_dense(domain, radius, max_points);
+    // Bricks where they apply (3-D) and fit, else `u32` cells: a
+    // budget the `u32` grid fits is never refused for the bricks' sake.
+    let bricks_fit = |d: &DensePlan<N>, bound: u64| {
+        d.reach.iter().all(|&r| r <= bricks::MAX_REACH) && bound <= budget
+    };
+    let dense_when = |full: bool| {
+        if bricks::applies(N)
+            && let Ok(d) = plan_dense(domain, radius, max_points, true)
+            && bricks_fit(&d, if full { d.bytes_when_full } else { d.bytes })
+        {
+            return Ok(d);
+        }
+        plan_dense(domain, radius, max_points, false)
+    };
+    let dense = || dense_when(false);
     let sparse = || plan_sparse(domain, radius, budget);
     let too_large = |needed: u64| Error::GridTooLarge { needed, budget };
     // Only what is allocated before the first point is checked here: the
@@ -357,7 +391,11 @@ pub(crate) fn plan<const N: usize>(
         GridLayout::Auto => {
             // Dense where it fits even full, sparse otherwise: the sparse
             // grid's memory grows with the points only.
-            let dense = if N <= 4 { dense() } else { Err(u64::MAX) };
+            let dense = if N <= 4 {
+                dense_when(true)
+            } else {
+                Err(u64::MAX)
+            };
             if let Ok(d) = dense
                 && d.bytes_when_full <= budget
             {
@@ -376,6 +414,7 @@ pub(crate) fn plan<const N: usize>(
 /// The built grid, one variant per layout.
 #[derive(Debug)]
 pub(crate) enum Grid<const N: usize> {
+    Bricks(bricks::Bricks<N>),
     Dense(dense::Dense<N>),
     Sparse(sparse::Sparse<N>),
 }
@@ -386,6 +425,17 @@ impl<const N: usize> Grid<N> {
     /// sparse layout, whose memory grows only with the points made.
     pub(crate) fn build(plan: &GridPlan<N>, domain: &Domain<N>, radius: f64) -> Self {
         match plan {
+            GridPlan::Dense(d) if d.bricked => match bricks::Bricks::try_new(d, domain, radius) {
+                Some(grid) => Grid::Bricks(grid),
+                None => Self::build(
+                    &GridPlan::Dense(DensePlan {
+                        bricked: false,
+                        ..*d
+                    }),
+                    domain,
+                    radius,
+                ),
+            },
             GridPlan::Dense(d) => match dense::Dense::try_new(d, domain, radius) {
                 Some(grid) => Grid::Dense(grid),
                 None => {
@@ -424,11 +474,11 @@ mod tests {
     fn dense_reach_follows_the_dimension() {
         // side = r/√N, so ceil(√N) cells, plus the margin for perfect squares.
         let r = 0.05;
-        let d2 = plan_dense(&Domain::from_extent([1.0; 2]).unwrap(), r, None).unwrap();
+        let d2 = plan_dense(&Domain::from_extent([1.0; 2]).unwrap(), r, None, false).unwrap();
         assert_eq!(d2.reach, [2; 2], "2-D");
-        let d3 = plan_dense(&Domain::from_extent([1.0; 3]).unwrap(), r, None).unwrap();
+        let d3 = plan_dense(&Domain::from_extent([1.0; 3]).unwrap(), r, None, false).unwrap();
         assert_eq!(d3.reach, [2; 3], "3-D");
-        let d5 = plan_dense(&Domain::from_extent([1.0; 5]).unwrap(), 0.5, None).unwrap();
+        let d5 = plan_dense(&Domain::from_extent([1.0; 5]).unwrap(), 0.5, None, false).unwrap();
         assert_eq!(d5.reach, [3; 5], "5-D needs 3 cells, not 2");
         for i in 0..2 {
             assert!(d2.side[i] <= r / 2f64.sqrt(), "side within r/√2");
@@ -482,7 +532,7 @@ mod tests {
             let d = Domain::from_extent(extent)
                 .unwrap()
                 .with_periodic([periodic; N]);
-            let p = plan_dense(&d, r, None).unwrap();
+            let p = plan_dense(&d, r, None, false).unwrap();
             for (&reach, &m) in p.reach.iter().zip(&p.cells) {
                 assert!(reach <= m, "{N}-D r = {r}: reach {reach} > {m} cells");
                 if !periodic {

@@ -1,0 +1,820 @@
+//! The dense grid in bricks, with the points stored in their brick (3-D).
+//!
+//! The same cells as [`super::dense::Dense`] (side `<= r/√N`, at most one
+//! point each, padded by the reach, ghosts across periodic faces), the
+//! same nearest-first part stencils and the same two-pass seed, in another
+//! layout. In 3-D at a million points the sampler waits on memory: a pick's
+//! 5×5×5 neighbourhood is 25 rows of `u32` indices in 25 to 35 cache lines,
+//! and each occupied cell then sends it to a point somewhere in a vector of
+//! 24 MB, a second miss that cannot start before the first ends. Here
+//!
+//! - cells are grouped in bricks of 4×4×4, each cell a byte: the point's
+//!   slot in its brick (0 when empty), so a brick's cells are one cache line
+//!   and a neighbourhood (within 2 cells, 5 wide) always spans 2×2×2 bricks,
+//!   8 lines;
+//! - each brick stores its points itself, up to [`CAPACITY`] of them right
+//!   after its cells (6 lines a brick in all), the rest in a spill chunk of
+//!   its own (in the unit cube at 1 M points no brick holds more than 13);
+//!
+//! so every line a search can need is known from the candidate's cell alone
+//! and can be asked for at once, cells and points together. The grid takes
+//! 6 bytes a cell (4 for the `u32` grid) but holds the points in them.
+//!
+//! A cell's address is a sum of one term per axis (its brick's offset along
+//! that axis plus its place inside the brick), read from a table per axis;
+//! a stencil entry is a triple of indices into the candidate's window of
+//! those terms, so one stencil serves every position inside a brick.
+
+use super::dense::{Stencil, StencilShape, closer, for_each_image, locate, parts};
+use super::{DensePlan, NeighbourGrid};
+use crate::budget::{bytes_of, vec_bytes};
+use crate::domain::Domain;
+
+/// Cells in a brick: one cache line of byte cells.
+const BRICK_CELLS: usize = 64;
+/// Points a brick stores itself. 13 fill its sixth line (64 bytes of cells,
+/// 13 × 24 of points, the count and the spill index: 384 bytes); in the
+/// unit cube at `k = 30` a brick holds 6.7 points on average and at most 13
+/// (1 M points, seed 1).
+pub(crate) const CAPACITY: usize = 13;
+/// A brick's spill chunk: room for every cell it has beyond [`CAPACITY`].
+const SPILL: usize = BRICK_CELLS - CAPACITY;
+/// The largest reach (in cells) the windows hold: 3-D needs at most 3 (2 in
+/// any box over 4 cells a side; see `grid::needed_reach`).
+pub(crate) const MAX_REACH: usize = 3;
+/// A window's length on one axis: `2·MAX_REACH + 1`, rounded up to 8 so
+/// that an index masked with 7 needs no bounds check.
+const WINDOW: usize = 8;
+/// As in [`super::dense`]: cells looked up before their points are checked.
+const SCAN_CHUNK: usize = 8;
+/// As in [`super::dense`]: the most occupied cells the seed collects.
+const SEED_MAX: usize = 32;
+/// Never a valid address (found-cell slots start with it).
+const NOWHERE: usize = usize::MAX;
+
+/// Whether the sampler uses bricks in `n` dimensions: in 3-D only, where
+/// the grid outgrows the caches (2-D's 1 M-point grid mostly fits them;
+/// from 4-D a 64-cell brick is 2 cells wide).
+pub(crate) const fn applies(n: usize) -> bool {
+    n == 3
+}
+
+/// Bits of a cell coordinate inside its brick, per axis: 2 in 3-D (4
+/// cells), so that a brick holds [`BRICK_CELLS`] cells (the only
+/// dimension [`applies`] allows; 1-D and 2-D would take 6 and 3).
+const fn brick_bits(n: usize) -> usize {
+    match n {
+        1 => 6,
+        2 => 3,
+        _ => 2,
+    }
+}
+
+/// The points of one brick of cells, its count first: `insert` reads it,
+/// and the first line is the one a search has asked for.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Brick<const N: usize> {
+    /// Points stored (home and ghosts), at most [`BRICK_CELLS`].
+    count: u8,
+    /// `1 +` the start of this brick's chunk in [`Bricks::spill`], or 0.
+    spill: u32,
+    /// Slots `1..=CAPACITY`.
+    points: [[f64; N]; CAPACITY],
+}
+
+impl<const N: usize> Brick<N> {
+    const EMPTY: Self = Self {
+        count: 0,
+        spill: 0,
+        points: [[f64::INFINITY; N]; CAPACITY],
+    };
+}
+
+/// Bytes a bricked grid allocates before its first point, for a plan with
+/// `padded` cells per axis (the padding included), or `None` on overflow.
+/// The stencils are counted by the caller, as for the `u32` grid.
+pub(crate) fn bytes_for<const N: usize>(padded: &[u64; N]) -> Option<u64> {
+    let side = 1u64 << brick_bits(N);
+    let mut bricks = 1u64;
+    let mut tables = 0u64;
+    for &m in padded {
+        bricks = bricks.checked_mul(m.div_ceil(side))?;
+        tables = tables.checked_add(m.checked_add(WINDOW as u64)?)?;
+    }
+    bricks
+        .checked_mul(size_of::<Brick<N>>() as u64 + BRICK_CELLS as u64)?
+        .checked_add(tables.checked_mul(size_of::<usize>() as u64)?)
+}
+
+/// Where cells are: the address tables and the padding, and what the
+/// ghosts need.
+#[derive(Debug)]
+struct Geometry<const N: usize> {
+    /// Per axis, the address term of each padded coordinate `c`, at index
+    /// `c + MAX_REACH` (zeros around), so that `c`'s window is
+    /// `tables[axis][c..c + WINDOW]`.
+    tables: [Vec<usize>; N],
+    /// Cells per axis inside the box.
+    counts: [usize; N],
+    pad: [usize; N],
+    periods: [f64; N],
+    any_periodic: bool,
+}
+
+#[derive(Debug)]
+pub(crate) struct Bricks<const N: usize> {
+    /// Per cell, brick by brick (one cache line each), `0` if empty, else
+    /// the 1-based slot of its point in its brick.
+    cells: Vec<u8>,
+    /// The points of each brick.
+    bricks: Vec<Brick<N>>,
+    /// Points past [`CAPACITY`] in a brick, in chunks of [`SPILL`].
+    spill: Vec<[f64; N]>,
+    geometry: Geometry<N>,
+    lo: [f64; N],
+    inv_side: [f64; N],
+    last: [usize; N],
+    reach: [usize; N],
+    /// The whole cell's stencil (the pick's prefetch and the seed's cells).
+    full: Vec<[u8; N]>,
+    /// The parts' stencils, as [`super::dense::Dense`]'s.
+    parts: Vec<Vec<[u8; N]>>,
+    /// The full stencil without the centre, in address order of the `u32`
+    /// grid (axis 2, then 1, then 0), as [`super::dense::Dense`] seeds.
+    seed: Vec<[u8; N]>,
+    /// With a reach of 2 on every axis, the address steps from a window's
+    /// first brick to each of its `2^N` bricks; else empty.
+    corners: Vec<usize>,
+    /// The window entries of the reach box's `2^N` corners.
+    corner_entries: Vec<[u8; N]>,
+    stencil_bytes: u64,
+    periods: [f64; N],
+    any_periodic: bool,
+    radius_squared: f64,
+}
+
+/// A stencil's offsets as window indices: `Stencil::new` is given strides
+/// `8^i`, so an offset `Σ d_i·8^i` with `|d_i| <= 3` decodes to
+/// `d_i + MAX_REACH` per axis.
+fn entries<const N: usize>(stencil: &Stencil) -> Option<Vec<[u8; N]>> {
+    let bias: isize = (0..N).map(|i| 3isize << (3 * i)).sum();
+    let mut out = Vec::new();
+    out.try_reserve_exact(stencil.offsets.len()).ok()?;
+    for &o in &stencil.offsets {
+        let u = usize::try_from(o + bias).ok()?;
+        let mut e = [0u8; N];
+        for (i, x) in e.iter_mut().enumerate() {
+            *x = u8::try_from((u >> (3 * i)) & 7).ok()?;
+        }
+        out.push(e);
+    }
+    Some(out)
+}
+
+impl<const N: usize> Geometry<N> {
+    /// The address of a cell inside the box.
+    fn home(&self, cell: &[usize; N]) -> usize {
+        self.address_of(&core::array::from_fn(|i| {
+            cell.get(i).copied().unwrap_or(0) + self.pad.get(i).copied().unwrap_or(0)
+        }))
+    }
+
+    /// The address of a padded cell.
+    fn address_of(&self, padded: &[usize; N]) -> usize {
+        padded
+            .iter()
+            .zip(&self.tables)
+            .map(|(&c, t)| t.get(c + MAX_REACH).copied().unwrap_or(0))
+            .sum()
+    }
+
+    /// Calls `f` with the address of every cell `p`'s cell is stored in:
+    /// its own, then its ghosts across periodic faces (several when the
+    /// period is shorter than the padding), as [`super::dense::Dense`]
+    /// writes them.
+    fn placements(&self, cell: &[usize; N], mut f: impl FnMut(usize)) {
+        f(self.home(cell));
+        if self.any_periodic {
+            for_each_image(cell, &self.pad, &self.counts, &self.periods, |at| {
+                f(self.address_of(at));
+            });
+        }
+    }
+}
+
+/// The slot held by the cell at `address` (0: empty).
+#[inline(always)]
+fn slot(cells: &[u8], address: usize) -> u8 {
+    cells.get(address).copied().unwrap_or(0)
+}
+
+impl<const N: usize> Bricks<N> {
+    /// Allocates the grid, or `None` if the allocation fails or the plan's
+    /// reach is past [`MAX_REACH`] (the caller then builds the `u32` grid).
+    pub(crate) fn try_new(plan: &DensePlan<N>, domain: &Domain<N>, radius: f64) -> Option<Self> {
+        if !applies(N) || plan.reach.iter().any(|&r| r > MAX_REACH) {
+            return None;
+        }
+        let bits = brick_bits(N);
+        let side = 1usize << bits;
+        let mut tables: [Vec<usize>; N] = core::array::from_fn(|_| Vec::new());
+        let mut brick_stride = 1usize;
+        for (axis, (table, (&m, &pad))) in tables
+            .iter_mut()
+            .zip(plan.cells.iter().zip(&plan.reach))
+            .enumerate()
+        {
+            let padded = m.checked_add(pad.checked_mul(2)?)?;
+            table.try_reserve_exact(padded.checked_add(WINDOW)?).ok()?;
+            table.resize(MAX_REACH, 0);
+            for c in 0..padded {
+                let brick = (c >> bits).checked_mul(brick_stride)?;
+                let inside = (c & (side - 1)) << (bits * axis);
+                table.push(brick.checked_mul(BRICK_CELLS)?.checked_add(inside)?);
+            }
+            table.resize(padded + WINDOW, 0);
+            brick_stride = brick_stride.checked_mul(padded.div_ceil(side))?;
+        }
+        let mut cells = Vec::new();
+        cells
+            .try_reserve_exact(brick_stride.checked_mul(BRICK_CELLS)?)
+            .ok()?;
+        // Before the first write: pages get their size when first touched.
+        crate::huge_pages::advise(&cells);
+        cells.resize(brick_stride * BRICK_CELLS, 0);
+        let mut bricks = Vec::new();
+        bricks.try_reserve_exact(brick_stride).ok()?;
+        crate::huge_pages::advise(&bricks);
+        bricks.resize(brick_stride, Brick::EMPTY);
+        let shape = StencilShape {
+            reach: plan.reach,
+            side: plan.side,
+            eta: plan.eta,
+            radius,
+        };
+        let stride: [usize; N] = core::array::from_fn(|i| 1 << (3 * i));
+        let full = entries(&Stencil::new(&shape, &stride, &[0; N], 1)?)?;
+        let centre = [u8::try_from(MAX_REACH).ok()?; N];
+        let mut seed: Vec<[u8; N]> = full.iter().copied().filter(|&e| e != centre).collect();
+        // Address order of the `u32` grid: the last axis slowest.
+        seed.sort_unstable_by(|a, b| a.iter().rev().cmp(b.iter().rev()));
+        let count = parts(N).checked_pow(u32::try_from(N).ok()?)?;
+        let mut stencils = Vec::new();
+        stencils.try_reserve_exact(count).ok()?;
+        for k in 0..count {
+            let mut part = [0; N];
+            let mut rest = k;
+            for p in &mut part {
+                *p = rest % parts(N);
+                rest /= parts(N);
+            }
+            stencils.push(entries(&Stencil::new(&shape, &stride, &part, parts(N))?)?);
+        }
+        let mut corners = Vec::new();
+        let mut corner_entries = Vec::new();
+        corner_entries.try_reserve_exact(1 << N).ok()?;
+        for corner in 0..1usize << N {
+            let mut entry = [0u8; N];
+            let mut step = 0usize;
+            let mut bricks_before = 1usize;
+            for (axis, (e, (&r, &m))) in entry
+                .iter_mut()
+                .zip(plan.reach.iter().zip(&plan.cells))
+                .enumerate()
+            {
+                let high = corner >> axis & 1 == 1;
+                *e = u8::try_from(if high { MAX_REACH + r } else { MAX_REACH - r }).ok()?;
+                if high {
+                    step += bricks_before * BRICK_CELLS;
+                }
+                bricks_before *= (m + 2 * r).div_ceil(side);
+            }
+            corner_entries.push(entry);
+            corners.push(step);
+        }
+        if plan.reach.iter().any(|&r| r != 2) {
+            corners = Vec::new();
+        }
+        let stencil_bytes = stencils
+            .iter()
+            .chain([&full, &seed])
+            .map(vec_bytes)
+            .sum::<u64>()
+            .saturating_add(vec_bytes(&stencils))
+            .saturating_add(vec_bytes(&corners))
+            .saturating_add(vec_bytes(&corner_entries));
+        Some(Self {
+            cells,
+            bricks,
+            spill: Vec::new(),
+            geometry: Geometry {
+                tables,
+                counts: plan.cells,
+                pad: plan.reach,
+                periods: domain.periods(),
+                any_periodic: domain.any_periodic(),
+            },
+            lo: domain.lo(),
+            inv_side: plan.side.map(|s| 1.0 / s),
+            last: plan.cells.map(|m| m.saturating_sub(1)),
+            reach: plan.reach,
+            full,
+            parts: stencils,
+            seed,
+            corners,
+            corner_entries,
+            stencil_bytes,
+            periods: domain.periods(),
+            any_periodic: domain.any_periodic(),
+            radius_squared: radius * radius,
+        })
+    }
+
+    /// The address terms around a cell inside the box, per axis: entry `e`
+    /// is the term of the cell `e - MAX_REACH` away.
+    #[inline(always)]
+    fn window(&self, cell: &[usize; N]) -> [&[usize; WINDOW]; N] {
+        const ZERO: [usize; WINDOW] = [0; WINDOW];
+        core::array::from_fn(|axis| {
+            let c = cell.get(axis).copied().unwrap_or(0)
+                + self.geometry.pad.get(axis).copied().unwrap_or(0);
+            self.geometry
+                .tables
+                .get(axis)
+                .and_then(|t| t.get(c..c + WINDOW))
+                .and_then(|w| <&[usize; WINDOW]>::try_from(w).ok())
+                .unwrap_or(&ZERO)
+        })
+    }
+
+    /// The address of a stencil entry in a window.
+    #[inline(always)]
+    fn address(window: &[&[usize; WINDOW]; N], entry: &[u8; N]) -> usize {
+        window
+            .iter()
+            .zip(entry)
+            .map(|(w, &e)| w.get(usize::from(e) & (WINDOW - 1)).copied().unwrap_or(0))
+            .sum()
+    }
+
+    /// The slot held by the cell at `address` (0: empty).
+    #[inline(always)]
+    fn slot(&self, address: usize) -> u8 {
+        slot(&self.cells, address)
+    }
+
+    /// The point in the cell at `address`, if any.
+    #[inline(always)]
+    fn point(&self, address: usize) -> Option<&[f64; N]> {
+        let slot = usize::from(*self.cells.get(address)?);
+        let brick = self.bricks.get(address / BRICK_CELLS)?;
+        if slot <= CAPACITY {
+            brick.points.get(slot.checked_sub(1)?)
+        } else {
+            let start = usize::try_from(brick.spill).ok()?.checked_sub(1)?;
+            self.spill.get(start + slot - CAPACITY - 1)
+        }
+    }
+
+    /// Asks for the bricks of a window within `reach`: per brick its
+    /// cells' line and the three lines that hold its first 7 points (a
+    /// brick holds 6.7 on average). With a
+    /// reach of 2 (every box over 4 cells a side) the window spans exactly
+    /// 2 bricks per axis, found from the first by [`Self::corners`]; else
+    /// the bricks of the reach box's corners.
+    #[inline(always)]
+    fn prefetch_window(&self, window: &[&[usize; WINDOW]; N]) {
+        let ask = |address: usize| {
+            crate::prefetch::prefetch(&self.cells, address);
+            if let Some(b) = self.bricks.get(address / BRICK_CELLS) {
+                crate::prefetch::prefetch(&b.points, 0);
+                crate::prefetch::prefetch(&b.points, 3);
+                crate::prefetch::prefetch(&b.points, 6);
+            }
+        };
+        if self.corners.is_empty() {
+            for entry in &self.corner_entries {
+                ask(Self::address(window, entry));
+            }
+        } else {
+            let first = Self::address(window, &[1; N]) & !(BRICK_CELLS - 1);
+            for &step in &self.corners {
+                ask(first + step);
+            }
+        }
+    }
+
+    /// As [`super::dense::Dense`]'s: the addresses of the occupied cells
+    /// among `entries`, in order, into `found`, without a branch.
+    #[inline(always)]
+    fn occupied<const M: usize>(
+        &self,
+        window: &[&[usize; WINDOW]; N],
+        entries: &[[u8; N]],
+        found: &mut [usize; M],
+    ) -> usize {
+        let mut n = 0;
+        for entry in entries {
+            n = self.note(Self::address(window, entry), found, n);
+        }
+        n
+    }
+
+    /// Notes the cell at `address` in `found` after the `n` occupied
+    /// ones, without a branch; returns `n + 1` if it is occupied, else `n`
+    /// (so the next cell overwrites it). Past `M` occupied cells, later
+    /// ones overwrite earlier ones, which only the seed can meet, and any
+    /// subset suits it.
+    #[inline(always)]
+    fn note<const M: usize>(&self, address: usize, found: &mut [usize; M], n: usize) -> usize {
+        let slot = self.slot(address);
+        if let Some(f) = found.get_mut(n % M) {
+            *f = address;
+        }
+        n + usize::from(slot != 0)
+    }
+
+    /// [`Self::occupied`] for the cells within 2 of a 3-D window's centre
+    /// (the whole stencil of a reach of 2), the centre included, row by row
+    /// in the `u32` grid's address order: the seed's cells, each row's
+    /// address computed once.
+    #[inline(always)]
+    fn occupied_box<const M: usize>(
+        &self,
+        window: [&[usize; WINDOW]; 3],
+        found: &mut [usize; M],
+    ) -> usize {
+        let [w0, w1, w2] = window;
+        let [x0, x1, x2, x3, x4] = [w0[1], w0[2], w0[3], w0[4], w0[5]];
+        let mut n = 0;
+        for &plane in &w2[1..6] {
+            for &y in &w1[1..6] {
+                let row = plane + y;
+                for address in [row + x0, row + x1, row + x2, row + x3, row + x4] {
+                    n = self.note(address, found, n);
+                }
+            }
+        }
+        n
+    }
+
+    #[inline(always)]
+    fn scan<const PERIODIC: bool>(
+        &self,
+        window: &[&[usize; WINDOW]; N],
+        stencil: &[[u8; N]],
+        p: &[f64; N],
+    ) -> Option<[f64; N]> {
+        let mut found = [NOWHERE; SCAN_CHUNK];
+        for chunk in stencil.chunks(SCAN_CHUNK) {
+            let n = self.occupied(window, chunk, &mut found);
+            for &address in found.iter().take(n) {
+                let Some(q) = self.point(address) else {
+                    continue;
+                };
+                if closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared) {
+                    return Some(*q);
+                }
+            }
+        }
+        None
+    }
+
+    /// Spill slots that storing a point in `cell` may open: a chunk for
+    /// each placement whose brick has none and could fill past
+    /// [`CAPACITY`] (bricks met twice counted twice: an upper bound).
+    fn spill_needed(&self, cell: &[usize; N]) -> usize {
+        if !self.geometry.any_periodic {
+            let home = self.geometry.home(cell);
+            return match self.bricks.get(home / BRICK_CELLS) {
+                Some(b) if b.spill == 0 && usize::from(b.count) >= CAPACITY => SPILL,
+                _ => 0,
+            };
+        }
+        let mut total = 0usize;
+        self.geometry.placements(cell, |_| total += 1);
+        let mut needed = 0usize;
+        self.geometry.placements(cell, |address| {
+            if let Some(b) = self.bricks.get(address / BRICK_CELLS)
+                && b.spill == 0
+                && usize::from(b.count) + total > CAPACITY
+            {
+                needed += SPILL;
+            }
+        });
+        needed
+    }
+}
+
+impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
+    #[inline(always)]
+    fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
+        let (cell, part) = locate(p, &self.lo, &self.inv_side, &self.last, parts(N));
+        let window = self.window(&cell);
+        let stencil = self.parts.get(part).unwrap_or(&self.full);
+        self.prefetch_window(&window);
+        if self.any_periodic {
+            self.scan::<true>(&window, stencil, p)
+        } else {
+            self.scan::<false>(&window, stencil, p)
+        }
+    }
+
+    /// As [`super::dense::Dense`]'s seed: the cells of the whole stencil
+    /// in the `u32` grid's address order, the occupied ones' addresses
+    /// first, then their points.
+    #[inline(always)]
+    fn seed(&self, p: &[f64; N], limit: usize, mut take: impl FnMut(&[f64; N])) {
+        let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
+        let window = self.window(&cell);
+        let mut found = [NOWHERE; SEED_MAX];
+        // With a reach of 2, the whole box, the centre (`p`'s own cell)
+        // included and skipped here; otherwise the stencil without it.
+        let (n, centre) =
+            if let ([w0, w1, w2], [2, 2, 2]) = (window.as_slice(), self.reach.as_slice()) {
+                let centre = Self::address(&window, &[3; N]);
+                (self.occupied_box([w0, w1, w2], &mut found), centre)
+            } else {
+                (self.occupied(&window, &self.seed, &mut found), NOWHERE)
+            };
+        let mut taken = 0;
+        for &address in found.iter().take(n) {
+            if taken == limit {
+                break;
+            }
+            if address != centre
+                && let Some(q) = self.point(address)
+            {
+                take(q);
+                taken += 1;
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn prefetch(&self, p: &[f64; N]) {
+        let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
+        self.prefetch_window(&self.window(&cell));
+    }
+
+    fn bytes(&self) -> u64 {
+        let tables = self
+            .geometry
+            .tables
+            .iter()
+            .map(vec_bytes)
+            .fold(0u64, u64::saturating_add);
+        vec_bytes(&self.bricks)
+            .saturating_add(vec_bytes(&self.cells))
+            .saturating_add(vec_bytes(&self.spill))
+            .saturating_add(tables)
+            .saturating_add(self.stencil_bytes)
+    }
+
+    fn reserve(&mut self, p: &[f64; N], spare: u64) -> bool {
+        let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
+        let needed = self.spill_needed(&cell);
+        let (len, capacity) = (self.spill.len(), self.spill.capacity());
+        if capacity - len >= needed {
+            return true;
+        }
+        // Double, or as much as the budget allows; the old block is held
+        // while the new one is filled, so the new one alone must fit.
+        let fits = usize::try_from(spare / bytes_of::<[f64; N]>(1).max(1)).unwrap_or(usize::MAX);
+        let wanted = capacity.saturating_mul(2).max(len + needed).min(fits);
+        if wanted < len + needed {
+            return false;
+        }
+        self.spill.try_reserve_exact(wanted - len).is_ok()
+    }
+
+    #[inline(always)]
+    fn insert(&mut self, p: [f64; N]) -> bool {
+        let (cell, _) = locate(&p, &self.lo, &self.inv_side, &self.last, 1);
+        let home = self.geometry.home(&cell);
+        // Occupied only if rounding put two valid points in one cell: drop
+        // the newcomer, the set stays valid. Every placement is checked for
+        // room before any is written, so a point is stored with all its
+        // ghosts or not at all.
+        if self.slot(home) != 0 {
+            return false;
+        }
+        let needed = self.spill_needed(&cell);
+        if self.spill.capacity() - self.spill.len() < needed {
+            return false;
+        }
+        let Self {
+            cells,
+            bricks,
+            spill,
+            geometry,
+            ..
+        } = self;
+        let mut stored = true;
+        geometry.placements(&cell, |a| {
+            if slot(cells, a) == 0 {
+                stored &= put(cells, bricks, spill, a, &p);
+            }
+        });
+        stored
+    }
+}
+
+/// Stores `p` in the (empty) cell at `address`; `false` if its brick
+/// is full or needs a spill chunk there is no room for.
+fn put<const N: usize>(
+    cells: &mut [u8],
+    bricks: &mut [Brick<N>],
+    spill: &mut Vec<[f64; N]>,
+    address: usize,
+    p: &[f64; N],
+) -> bool {
+    let Some(brick) = bricks.get_mut(address / BRICK_CELLS) else {
+        return false;
+    };
+    let slot = usize::from(brick.count) + 1;
+    let Ok(slot_byte) = u8::try_from(slot) else {
+        return false;
+    };
+    if slot > BRICK_CELLS {
+        return false;
+    }
+    if slot <= CAPACITY {
+        if let Some(q) = brick.points.get_mut(slot - 1) {
+            *q = *p;
+        }
+    } else {
+        if brick.spill == 0 {
+            let start = spill.len();
+            // `reserve` made the room: this never allocates.
+            if spill.capacity() - start < SPILL {
+                return false;
+            }
+            let Ok(mark) = u32::try_from(start + 1) else {
+                return false;
+            };
+            spill.resize(start + SPILL, [f64::INFINITY; N]);
+            brick.spill = mark;
+        }
+        let start = usize::try_from(brick.spill).unwrap_or(0).saturating_sub(1);
+        match spill.get_mut(start + slot - CAPACITY - 1) {
+            Some(q) => *q = *p,
+            None => return false,
+        }
+    }
+    brick.count = slot_byte;
+    if let Some(c) = cells.get_mut(address) {
+        *c = slot_byte;
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{GridLayout, GridPlan, plan};
+    use super::*;
+    use crate::vector::{distance_squared, periodic_distance_squared};
+
+    fn bricks(domain: &Domain<3>, r: f64) -> Bricks<3> {
+        match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
+            Ok(GridPlan::Dense(p)) => {
+                assert!(p.bricked, "3-D plans bricks");
+                Bricks::try_new(&p, domain, r).expect("allocates")
+            }
+            other => panic!("no dense plan: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_brick_is_five_cache_lines() {
+        assert_eq!(size_of::<Brick<3>>(), 320, "13 points, count, spill");
+        assert_eq!(align_of::<Brick<3>>(), 64, "line-aligned");
+    }
+
+    /// Every cell of the padded grid has its own address, and the cells of
+    /// a brick share one line.
+    #[test]
+    fn addresses_are_distinct_and_bricked() {
+        let g = bricks(&Domain::from_extent([1.0, 0.3, 0.5]).unwrap(), 0.1);
+        let padded: [usize; 3] =
+            core::array::from_fn(|i| g.geometry.counts[i] + 2 * g.geometry.pad[i]);
+        let mut seen = vec![false; g.cells.len()];
+        for z in 0..padded[2] {
+            for y in 0..padded[1] {
+                for x in 0..padded[0] {
+                    let a = g.geometry.address_of(&[x, y, z]);
+                    assert!(!seen[a], "address {a} twice");
+                    seen[a] = true;
+                    let corner = g.geometry.address_of(&[x & !3, y & !3, z & !3]);
+                    assert_eq!(a / BRICK_CELLS, corner / BRICK_CELLS, "({x}, {y}, {z})");
+                }
+            }
+        }
+    }
+
+    /// As the `u32` grid's test: a conflict is found exactly when a brute
+    /// force over every stored point finds one, for candidates on cell and
+    /// part faces, a hair either side, and at random; in boxes with a reach
+    /// of 1, 2 and 3 cells, bounded and periodic (ghosts).
+    #[test]
+    fn conflicts_agree_with_brute_force() {
+        fn check(domain: Domain<3>, r: f64, seed: u64) -> [usize; 3] {
+            let mut g = bricks(&domain, r);
+            let mut rng = crate::random::seeded_rng(seed);
+            let mut stored: Vec<[f64; 3]> = Vec::new();
+            let side = g.inv_side.map(|s| 1.0 / s);
+            let counts = g.geometry.counts;
+            let periods = domain.periods();
+            let coordinate = |axis: usize, rng: &mut crate::random::DefaultRng| {
+                super::super::dense::probe(
+                    rng,
+                    domain.lo()[axis],
+                    domain.hi()[axis],
+                    side[axis],
+                    counts[axis],
+                )
+            };
+            let (mut hits, mut misses) = (0, 0);
+            for _ in 0..3000 {
+                let p: [f64; 3] = core::array::from_fn(|axis| coordinate(axis, &mut rng));
+                let brute = stored
+                    .iter()
+                    .any(|q| periodic_distance_squared(&p, q, &periods) < r * r);
+                assert_eq!(g.conflict(&p).is_some(), brute, "{p:?}, r = {r}");
+                if brute {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                    assert!(g.reserve(&p, u64::MAX), "reserve");
+                    if g.insert(p) {
+                        stored.push(p);
+                    }
+                }
+            }
+            assert!(hits > 300 && misses >= 5, "{hits} hits, {misses} misses");
+            g.reach
+        }
+        let unit = Domain::from_extent([1.0, 0.8, 0.6]).unwrap();
+        assert_eq!(check(unit, 0.1, 3), [2; 3], "reach");
+        check(unit.with_periodic([true, false, true]), 0.1, 4);
+        // Reach 3 (4 cells a side), and 1 (2 cells).
+        let reach = check(Domain::from_extent([0.0101; 3]).unwrap(), 0.0058, 5);
+        assert_eq!(reach, [3; 3], "reach");
+        let reach = check(Domain::from_extent([0.5, 0.4, 0.3]).unwrap(), 0.3, 6);
+        assert_eq!(reach, [2, 2, 1], "reach");
+        // Periods shorter than the padding: several ghosts a point.
+        check(
+            Domain::from_extent([0.15, 1.0, 0.1])
+                .unwrap()
+                .with_periodic([true, false, true]),
+            0.1,
+            7,
+        );
+    }
+
+    /// A brick filled past its own room spills, and its points are still
+    /// found, within the reserved bytes.
+    #[test]
+    fn full_bricks_spill() {
+        let domain = Domain::from_extent([1.0; 3]).unwrap();
+        let r = 0.1;
+        let mut g = bricks(&domain, r);
+        let side = 1.0 / g.inv_side[0];
+        let before = g.bytes();
+        // Every cell of one brick (cells 2 to 5 a side, padded 4 to 7; not
+        // a valid set: the grid stores what it is given).
+        assert_eq!(g.geometry.pad, [2; 3], "padding");
+        let mut stored = Vec::new();
+        for z in 2..6 {
+            for y in 2..6 {
+                for x in 2..6 {
+                    let p = [x, y, z].map(|i| (f64::from(i) + 0.5) * side);
+                    assert!(g.reserve(&p, u64::MAX), "reserve");
+                    assert!(g.insert(p), "insert {p:?}");
+                    stored.push(p);
+                }
+            }
+        }
+        assert!(!g.spill.is_empty(), "spilled");
+        assert!(g.bytes() > before, "the spill is counted");
+        for p in &stored {
+            let q = g.conflict(p).expect("found");
+            assert!(distance_squared(p, &q) < r * r, "{p:?}");
+            let mut n = 0;
+            g.seed(p, 32, |_| n += 1);
+            assert!(n >= 16, "seed from {p:?}: {n}");
+        }
+        // No room for a spill chunk: refused before anything is stored.
+        let mut h = bricks(&domain, r);
+        for p in stored.iter().take(CAPACITY) {
+            assert!(h.insert(*p), "within the brick");
+        }
+        assert!(!h.reserve(&stored[CAPACITY], 0), "no spare bytes");
+        assert!(!h.insert(stored[CAPACITY]), "no room reserved");
+        assert!(
+            h.conflict(&stored[CAPACITY]).is_some(),
+            "its neighbours are"
+        );
+    }
+}
