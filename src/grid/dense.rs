@@ -25,7 +25,7 @@ use crate::vector::{distance_squared, periodic_distance_squared};
 /// empty cells hold index 0, so real points are indexed from 1 and an empty
 /// cell needs no flag of its own.
 const FAR: f64 = f64::INFINITY;
-const EMPTY: u32 = 0;
+pub(crate) const EMPTY: u32 = 0;
 /// The most occupied cells [`Dense::seed`] collects (a 3-D stencil holds
 /// about 14 points in its 125 cells; the cache keeps at most 16).
 const SEED_MAX: usize = 32;
@@ -191,36 +191,6 @@ impl<const N: usize> Dense<N> {
         }
     }
 
-    /// The indices of the occupied cells among `offsets` around `base`, in
-    /// order, into `found`, without a branch (most cells are empty); returns
-    /// how many there were (past `M`, see below, the slots hold some of them
-    /// or the sentinel, which never blocks).
-    #[inline(always)]
-    fn occupied<const M: usize>(
-        &self,
-        base: usize,
-        offsets: &[isize],
-        found: &mut [u32; M],
-    ) -> usize {
-        let mut n = 0;
-        for &off in offsets {
-            // Always Some: the padding is as wide as the largest offset.
-            let index = self
-                .cells
-                .get(base.wrapping_add_signed(off))
-                .copied()
-                .unwrap_or(EMPTY);
-            // `n % M` needs no bounds check (M is a power of two); past
-            // `M` occupied cells, later ones overwrite earlier ones, which
-            // only the seed can meet, and any subset suits it.
-            if let Some(slot) = found.get_mut(n % M) {
-                *slot = index;
-            }
-            n += usize::from(index != EMPTY);
-        }
-        n
-    }
-
     #[inline(always)]
     fn scan<const PERIODIC: bool>(
         &self,
@@ -232,7 +202,7 @@ impl<const N: usize> Dense<N> {
         // branch (most cells are empty), then only those points.
         let mut found = [EMPTY; SCAN_CHUNK];
         for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
-            let n = self.occupied(base, chunk, &mut found);
+            let n = occupied(&self.cells, base, chunk, &mut found);
             for &index in found.iter().take(n) {
                 let Some(q) = self.points.get(index as usize) else {
                     continue;
@@ -356,7 +326,7 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
         let base = self.base(&self.cell_of(p));
         let mut found = [EMPTY; SEED_MAX];
-        let n = self.occupied(base, &self.seed_offsets, &mut found);
+        let n = occupied(&self.cells, base, &self.seed_offsets, &mut found);
         for &index in found.iter().take(n.min(limit)) {
             if let Some(q) = self.points.get(index as usize) {
                 take(q);
@@ -530,19 +500,12 @@ impl Stencil {
             let mut gap2 = 0.0;
             let mut centre2 = 0.0;
             for ((&di, &side), &k) in d.iter().zip(&shape.side).zip(&part_f) {
-                let (a, b) = (k / parts_f, (k + 1.0) / parts_f);
                 #[expect(clippy::cast_precision_loss, reason = "small offsets")]
                 let df = di as f64;
-                let gap = if di >= 1 {
-                    df - b
-                } else if di <= -1 {
-                    a - (df + 1.0)
-                } else {
-                    0.0
-                };
-                let gap = (gap - shape.eta).max(0.0) * side;
+                let gap = part_gap(df, k, parts_f, shape.eta, side);
                 gap2 += gap * gap;
                 // From the part's centre to the cell's: the tie-break.
+                let (a, b) = (k / parts_f, (k + 1.0) / parts_f);
                 let centre = (df + 0.5 - 0.5 * (a + b)) * side;
                 centre2 += centre * centre;
             }
@@ -633,6 +596,52 @@ pub(crate) fn probe(
     };
     let x = lo + (cell + frac) * side;
     x.clamp(lo, hi - side * 1e-9)
+}
+
+/// The values of the occupied cells (not [`EMPTY`]) of `cells` among
+/// `offsets` around `base`, in order, into `found`, without a branch (most
+/// cells are empty); returns how many there were. Past `M` (a power of two)
+/// occupied cells, later ones overwrite earlier ones, which only a seed can
+/// meet, and any subset suits it. Shared by the `u32` grid and the varying
+/// radius's band grids, whose cells hold indices the same way.
+#[inline(always)]
+pub(crate) fn occupied<const M: usize>(
+    cells: &[u32],
+    base: usize,
+    offsets: &[isize],
+    found: &mut [u32; M],
+) -> usize {
+    let mut n = 0;
+    for &off in offsets {
+        // Always Some: the padding is as wide as the largest offset.
+        let index = cells
+            .get(base.wrapping_add_signed(off))
+            .copied()
+            .unwrap_or(EMPTY);
+        // `n % M` needs no bounds check (M is a power of two).
+        if let Some(slot) = found.get_mut(n % M) {
+            *slot = index;
+        }
+        n += usize::from(index != EMPTY);
+    }
+    n
+}
+
+/// The gap along one axis, in length, between any point of part `k` (of
+/// `parts` per cell side) of a cell and the cell `d` steps away (`d` a
+/// whole number), less the rounding margin `eta` (in cells), never below
+/// 0: the bound every stencil is cut with. Shared by [`Stencil::new`] and
+/// the varying radius's stencil cuts, which must agree with it.
+pub(crate) fn part_gap(d: f64, k: f64, parts: f64, eta: f64, side: f64) -> f64 {
+    let (a, b) = (k / parts, (k + 1.0) / parts);
+    let gap = if d >= 1.0 {
+        d - b
+    } else if d <= -1.0 {
+        a - (d + 1.0)
+    } else {
+        0.0
+    };
+    (gap - eta).max(0.0) * side
 }
 
 #[cfg(test)]

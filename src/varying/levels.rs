@@ -27,11 +27,11 @@
 use super::coarse::Coarse;
 use super::{Stored, too_close};
 use crate::domain::Domain;
-use crate::grid::dense::{Stencil, StencilShape, locate, parts, stencil_bytes_per_cell};
+use crate::grid::dense::{
+    EMPTY, Stencil, StencilShape, locate, occupied, part_gap, parts, stencil_bytes_per_cell,
+};
 use crate::grid::rounding_margin;
 
-/// An empty cell.
-const EMPTY: u32 = 0;
 /// The ratio of a level's band of radii.
 const LEVEL_STEP: f64 = core::f64::consts::SQRT_2;
 /// The ratio between consecutive search radii of a level's stencils: `√2`,
@@ -287,8 +287,8 @@ impl<const N: usize> Level<N> {
     /// decoded into its cell steps; where the padded axes are too short
     /// for that to be unique (a periodic axis narrower than the window,
     /// whose stencils serve no search), nothing is cut. The gap is
-    /// `Stencil::new`'s formula, repeated: `Stencil` keeps no gaps, and
-    /// `grid/dense.rs` is shared with the fixed radius and the sweep.
+    /// `Stencil::new`'s own (`dense::part_gap`): `Stencil` keeps no gaps,
+    /// so they are computed again here, by the same function.
     fn cuts(
         &self,
         offsets: &[isize],
@@ -321,15 +321,7 @@ impl<const N: usize> Level<N> {
                 rest -= d * s;
                 #[expect(clippy::cast_precision_loss, reason = "small steps and parts")]
                 let (d, k) = (d as f64, k as f64);
-                let (a, b) = (k / parts, (k + 1.0) / parts);
-                let gap = if d >= 1.0 {
-                    d - b
-                } else if d <= -1.0 {
-                    a - (d + 1.0)
-                } else {
-                    0.0
-                };
-                let gap = (gap - self.eta).max(0.0) * side;
+                let gap = part_gap(d, k, parts, self.eta, side);
                 gap2 += gap * gap;
             }
             let len = u32::try_from(i + 1).unwrap_or(u32::MAX);
@@ -355,32 +347,6 @@ impl<const N: usize> Level<N> {
             .zip(reach)
             .zip(self.counts.iter().zip(periodic))
             .all(|((&c, &p), (&m, &periodic))| !periodic || (c >= p && c + p < m))
-    }
-
-    /// The values of the occupied cells among `offsets` around `base`,
-    /// into `found`, without a branch (most cells are empty); returns how
-    /// many there were. Past `M` (a power of two), later ones overwrite
-    /// earlier ones: only the seed meets that, and any subset suits it.
-    #[inline(always)]
-    fn occupied<const M: usize>(
-        &self,
-        base: usize,
-        offsets: &[isize],
-        found: &mut [u32; M],
-    ) -> usize {
-        let mut n = 0;
-        for &off in offsets {
-            let v = self
-                .cells
-                .get(base.wrapping_add_signed(off))
-                .copied()
-                .unwrap_or(EMPTY);
-            if let Some(s) = found.get_mut(n % M) {
-                *s = v;
-            }
-            n += usize::from(v != EMPTY);
-        }
-        n
     }
 
     /// The index in the padded array of a cell of the box.
@@ -552,7 +518,7 @@ impl<const N: usize> Levels<N> {
                 }
             }
             for chunk in built.within(sub, rho).chunks(CHUNK) {
-                let n = level.occupied(base, chunk, &mut found);
+                let n = occupied(&level.cells, base, chunk, &mut found);
                 for &v in found.iter().take(n) {
                     let i = v.wrapping_sub(1) as usize;
                     if too_close(points, periods, c, rc, i) {
@@ -655,7 +621,7 @@ impl<const N: usize> Levels<N> {
             return;
         };
         let mut found = [EMPTY; SEED_MAX];
-        let n = level.occupied(base, &built.stencil.offsets, &mut found);
+        let n = occupied(&level.cells, base, &built.stencil.offsets, &mut found);
         for &v in found.iter().take(n.min(limit)) {
             if let Some((q, _)) = points.get(v.wrapping_sub(1) as usize) {
                 take(q);
