@@ -477,6 +477,12 @@ impl<const N: usize> Sparse<N> {
         if let Some(q) = self.conflict_in(&cell, close) {
             return Some(q);
         }
+        if self.prefetch
+            && let Store::Array { entries, .. } = &self.store
+            && let Some(q) = self.nearer(p, &cell, |head| first_close(entries, head, close))
+        {
+            return Some(q);
+        }
         let mut steps = [[Step::default(); MAX_STEPS]; N];
         let mut lens = [0usize; N];
         // More steps than the plan allows cannot happen; were it to, the
@@ -494,13 +500,28 @@ impl<const N: usize> Sparse<N> {
     /// another cell or none, which costs a wasted load and changes nothing.
     #[inline(always)]
     fn prefetch_nearer(&self, p: &[f64; N], cell: &[i64; N]) {
-        let Store::Array {
-            heads,
-            entries,
-            stride,
-        } = &self.store
-        else {
-            return;
+        if let Store::Array { entries, .. } = &self.store {
+            self.nearer(p, &cell, |head| {
+                crate::prefetch::prefetch(entries, head as usize);
+                None::<()>
+            });
+        }
+    }
+
+    /// Calls `visit` with the head of each cell next to `p`'s own (`cell`)
+    /// on the nearer side along one axis, then along two, with the array
+    /// store, stopping at the first `Some`. An index off the box (a face, a
+    /// periodic wrap) names another cell or none: a wasted look, never a
+    /// missed one, since the full search follows.
+    #[inline(always)]
+    fn nearer<T>(
+        &self,
+        p: &[f64; N],
+        cell: &[i64; N],
+        mut visit: impl FnMut(u32) -> Option<T>,
+    ) -> Option<T> {
+        let Store::Array { heads, stride, .. } = &self.store else {
+            return None;
         };
         let own = linear(cell, stride);
         let mut near = [0usize; N];
@@ -512,15 +533,21 @@ impl<const N: usize> Sparse<N> {
             let upper = (x - lo) * inv_side - c as f64 >= 0.5;
             *n = if upper { s } else { s.wrapping_neg() };
         }
-        for (i, &a) in near.iter().enumerate() {
-            let at = own.wrapping_add(a);
-            let head = heads.get(at).copied().unwrap_or(END);
-            crate::prefetch::prefetch(entries, head as usize);
-            for &b in near.iter().skip(i + 1) {
-                let head = heads.get(at.wrapping_add(b)).copied().unwrap_or(END);
-                crate::prefetch::prefetch(entries, head as usize);
+        let head = |at: usize| heads.get(at).copied().unwrap_or(END);
+        for &a in &near {
+            if let Some(found) = visit(head(own.wrapping_add(a))) {
+                return Some(found);
             }
         }
+        for (i, &a) in near.iter().enumerate() {
+            let at = own.wrapping_add(a);
+            for &b in near.iter().skip(i + 1) {
+                if let Some(found) = visit(head(at.wrapping_add(b))) {
+                    return Some(found);
+                }
+            }
+        }
+        None
     }
 
     /// A stored point of `cell` for which `close` holds, if any.
