@@ -838,10 +838,15 @@ mod tests {
     /// rounded cell index is off by one.
     #[test]
     fn both_stores_find_exactly_the_conflicts_brute_force_finds() {
-        /// Returns whether the array store started loading the nearest
-        /// cells' points ([`Sparse::prefetch_nearer`]).
-        fn check<const N: usize>(extent: f64, periodic: [bool; N], r: f64, seed: u64) -> bool {
-            use crate::random::{below, seeded_rng, unit};
+        /// Returns whether the array store checks the nearer cells first
+        /// ([`Sparse::nearer`]), and how many candidates had a conflict.
+        fn check<const N: usize>(
+            extent: f64,
+            periodic: [bool; N],
+            r: f64,
+            seed: u64,
+        ) -> (bool, usize) {
+            use crate::random::{below, seeded_rng, symmetric, unit};
             let d = Domain::new([-0.3; N], [extent - 0.3; N])
                 .unwrap()
                 .with_periodic(periodic);
@@ -857,11 +862,18 @@ mod tests {
             let periods = d.periods();
             let mut rng = seeded_rng(seed);
             let mut stored: Vec<[f64; N]> = Vec::new();
+            let mut conflicts = 0;
             for i in 0..600 {
+                // A third of the candidates, once there are points, near
+                // one of them: within r of it about half the time.
+                let near = (!stored.is_empty() && unit(&mut rng) < 0.3)
+                    .then(|| stored[below(&mut rng, stored.len())]);
                 let mut q = [0.0; N];
                 for (axis, x) in q.iter_mut().enumerate() {
                     let (lo, side) = (d.lo()[axis], p.side[axis]);
-                    *x = if unit(&mut rng) < 0.3 {
+                    *x = if let Some(a) = near {
+                        a[axis] + symmetric(&mut rng) * 0.7 * r
+                    } else if unit(&mut rng) < 0.3 {
                         // On a cell face, or an ulp either side.
                         let cells = usize::try_from(p.cells[axis]).unwrap();
                         let face = lo + below(&mut rng, cells + 3) as f64 * side;
@@ -879,6 +891,7 @@ mod tests {
                 }
                 let close = |a: &[f64; N]| periodic_distance_squared(a, &q, &periods) < r * r;
                 let expected = stored.iter().any(close);
+                conflicts += usize::from(expected);
                 for (g, name) in grids.iter().zip(["array", "table"]) {
                     let found = g.conflict(&q);
                     assert_eq!(
@@ -905,7 +918,7 @@ mod tests {
                 "{N}-D r = {r}: only {} points",
                 stored.len()
             );
-            grids[0].prefetch
+            (grids[0].prefetch, conflicts)
         }
         for seed in 0..3 {
             for periodic in [false, true] {
@@ -915,8 +928,12 @@ mod tests {
                 check::<3>(1.0, [periodic; 3], 0.2, seed);
                 check::<4>(1.0, [false, periodic, true, periodic], 0.3, seed);
                 check::<5>(1.0, [periodic; 5], 0.2, seed);
-                // 10^5 cells: the path that prefetches.
-                assert!(check::<5>(1.0, [periodic; 5], 0.1, seed), "prefetch path");
+                // 10^5 cells: the path that checks the nearer cells first.
+                let (nearer, conflicts) = check::<5>(1.0, [periodic; 5], 0.1, seed);
+                assert!(
+                    nearer && conflicts > 50,
+                    "nearer cells: {conflicts} conflicts"
+                );
                 check::<5>(1.0, [periodic; 5], 0.5, seed);
                 check::<6>(1.0, [periodic; 6], 0.3, seed);
                 check::<7>(1.0, [periodic; 7], 0.4, seed);
