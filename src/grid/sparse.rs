@@ -487,6 +487,9 @@ impl<const N: usize> Sparse<N> {
         if let Some(q) = self.conflict_in(&cell, close) {
             return Some(q);
         }
+        // Then the cells nearer on one or two axes, where most of the other
+        // conflicts lie: a search that finds one there skips listing the
+        // axes' steps and the walk.
         if self.nearer
             && let Store::Array { entries, .. } = &self.store
             && let Some(q) = self.nearer(p, &cell, |head| first_close(entries, head, close))
@@ -503,15 +506,14 @@ impl<const N: usize> Sparse<N> {
         self.search(&steps, &lens, close)
     }
 
-    /// Starts loading the first point of the cells next to `p`'s own on
-    /// the nearer side along each axis, with the array store: after the own
-    /// cell, the cells a search visits first, and where most conflicts lie.
-    /// Only hints: an index off the box (a face, a periodic wrap) names
-    /// another cell or none, which costs a wasted load and changes nothing.
+    /// Starts loading the first point of the cells [`Self::nearer`] checks
+    /// after the own cell. Only hints: an index off the box (a face, a
+    /// periodic wrap) names another cell or none, which costs a wasted load
+    /// and changes nothing.
     #[inline(always)]
     fn prefetch_nearer(&self, p: &[f64; N], cell: &[i64; N]) {
         if let Store::Array { entries, .. } = &self.store {
-            self.nearer(p, &cell, |head| {
+            self.nearer(p, cell, |head| {
                 crate::prefetch::prefetch(entries, head as usize);
                 None::<()>
             });
