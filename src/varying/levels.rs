@@ -237,6 +237,29 @@ impl<const N: usize> Level<N> {
         locate(p, lo, &self.inv_side, &last, PARTS)
     }
 
+    /// For a search of radius `radius` around `p`: `p`'s cell, its part,
+    /// and the index `m` of the smallest stencil radius that covers
+    /// `radius` (the largest there is if none does), that stencil built
+    /// for the part if it was not yet. [`Self::stencil`]`(m, part)` then
+    /// gives it.
+    #[inline(always)]
+    fn prepare(
+        &mut self,
+        p: &[f64; N],
+        radius: f64,
+        lo: &[f64; N],
+        periodic: &[bool; N],
+    ) -> ([usize; N], usize, usize) {
+        let m = self
+            .radii
+            .iter()
+            .position(|&x| x >= radius)
+            .unwrap_or(self.radii.len().saturating_sub(1));
+        let (cell, part) = self.locate(p, lo);
+        self.build(m, part, periodic);
+        (cell, part, m)
+    }
+
     /// Builds the stencil of radius `radii[m]` for part `part`, unless
     /// built already (the usual case, checked inline).
     #[inline(always)]
@@ -496,13 +519,7 @@ impl<const N: usize> Levels<N> {
         // Every point of this level within the coarse cells around has a
         // radius at most `min(top, largest)`.
         let rho = rc.max(level.top.min(largest));
-        let m = level
-            .radii
-            .iter()
-            .position(|&r| r >= rho)
-            .unwrap_or(level.radii.len().saturating_sub(1));
-        let (cell, part) = level.locate(c, &lo);
-        level.build(m, part, &periodic);
+        let (cell, part, m) = level.prepare(c, rho, &lo, &periodic);
         let level = &*level;
         let built = level.stencil(m, part)?;
         if level.fits(&cell, &built.reach, &periodic) {
@@ -589,13 +606,7 @@ impl<const N: usize> Levels<N> {
         let (lo, periodic) = (self.lo, self.periodic);
         let j = self.level_of(r);
         let level = self.levels.get_mut(j)?;
-        let m = level
-            .radii
-            .iter()
-            .position(|&x| x >= r)
-            .unwrap_or(level.radii.len().saturating_sub(1));
-        let (cell, part) = level.locate(p, &lo);
-        level.build(m, part, &periodic);
+        let (cell, part, m) = level.prepare(p, r, &lo, &periodic);
         let level = &*level;
         let built = level.stencil(m, part)?;
         if !level.fits(&cell, &built.reach, &periodic) {
