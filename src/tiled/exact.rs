@@ -251,6 +251,11 @@ pub(crate) struct Exact {
     /// against a few darts, not against every dart of a row as wide as the
     /// image.
     dart_columns: Vec<Vec<u32>>,
+    /// The darts kept in the row settled last, by pixel column: the only
+    /// final points a band point can be closer than `r` to (step 1; every
+    /// other final point is a sweep point, as the band's points are, and
+    /// `r < 1` keeps older rows out of reach).
+    darts_above: Vec<Vec<[f64; 2]>>,
 }
 
 impl Exact {
@@ -310,6 +315,7 @@ impl Exact {
             heap: BinaryHeap::new(),
             darts: Vec::new(),
             dart_columns: Vec::new(),
+            darts_above: Vec::new(),
         }
     }
 
@@ -354,7 +360,7 @@ impl Exact {
             1
         };
         self.gather(window, y, width, band_rows);
-        self.kill_conflicts(window, y, width);
+        self.kill_conflicts(y, width);
         // The local grid serves the darts and elimination; a row with no
         // short pixel, thinned at random, needs none (most rows at n = 64).
         let short_row = self
@@ -454,7 +460,14 @@ impl Exact {
     }
 
     /// Step 1: band points closer than `r` to a final point above are out.
-    fn kill_conflicts(&mut self, window: &Window, y: usize, width: usize) {
+    /// Only darts of row `y - 1` can be: two sweep points keep `r`, and
+    /// `r < 1` (at most `sqrt(0.88 / (s·n))`, `s, n >= 1`) puts rows above
+    /// `y - 1` out of reach; a band point within `r` of a dart lies in the
+    /// dart's column or a next one.
+    fn kill_conflicts(&mut self, y: usize, width: usize) {
+        if self.darts_above.iter().all(Vec::is_empty) {
+            return;
+        }
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
         let top = y as f64;
         let r2 = self.radius_squared;
@@ -467,9 +480,14 @@ impl Exact {
                 continue;
             }
             let x = b as usize % width;
-            if self
-                .final_above(window, y, x, width)
-                .any(|q| distance_squared(&p, q) < r2)
+            let near = self
+                .darts_above
+                .get(x.saturating_sub(1)..=(x + 1).min(width - 1))
+                .unwrap_or(&[])
+                .iter()
+                .flatten()
+                .any(|q| distance_squared(&p, q) < r2);
+            if near
                 && let (Some(a), Some(c)) = (self.alive.get_mut(i), self.count.get_mut(b as usize))
                 && *a
             {
@@ -941,7 +959,7 @@ impl Exact {
 
     /// Row `y`'s live points, in generation order (darts last), become its
     /// final points, which are also what the pixels emit.
-    fn store(&self, window: &mut Window, y: usize, width: usize) {
+    fn store(&mut self, window: &mut Window, y: usize, width: usize) {
         for x in 0..width {
             let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
                 continue;
@@ -960,6 +978,10 @@ impl Exact {
                 }
             }
         }
+        for list in &mut self.darts_above {
+            list.clear();
+        }
+        self.darts_above.resize_with(width, Vec::new);
         for &i in &self.darts {
             let i = i as usize;
             if self.alive.get(i) == Some(&true)
@@ -967,6 +989,9 @@ impl Exact {
                 && let Some(slot) = window.slot_mut(x as usize, y)
             {
                 slot.kept.push(p);
+                if let Some(list) = self.darts_above.get_mut(x as usize) {
+                    list.push(p);
+                }
             }
         }
     }
