@@ -53,7 +53,6 @@
 use super::window::Window;
 use crate::random::{below, unit};
 use crate::vector::distance_squared;
-use core::cmp::Ordering;
 use rand::Rng;
 use std::collections::BinaryHeap;
 
@@ -158,24 +157,30 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
     beta
 }
 
-/// A heap entry: a point's weight when pushed (stale if it changed since).
-#[derive(Clone, Copy, Debug)]
-struct Entry(f64, u32);
+/// A heap entry: a point's weight when pushed (stale if it changed since)
+/// and its index, packed into one integer whose order is the weights'
+/// `total_cmp`, ties going to the lower index: the heap then compares
+/// integers (its pops were 6 % of exact mode's instructions at `n = 4`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Entry(u128);
 
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
+/// The sign bit of an `f64`'s bits.
+const SIGN: u64 = 1 << 63;
+
+impl Entry {
+    fn new(weight: f64, index: u32) -> Self {
+        // `total_cmp`'s order as unsigned integers: negative weights have
+        // every bit flipped, the others only the sign bit.
+        let bits = weight.to_bits();
+        let key = if bits & SIGN == 0 { bits | SIGN } else { !bits };
+        Self((u128::from(key) << 32) | u128::from(u32::MAX - index))
     }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.0.total_cmp(&other.0).then(other.1.cmp(&self.1))
+
+    fn parts(self) -> (f64, u32) {
+        #[expect(clippy::cast_possible_truncation, reason = "the two halves")]
+        let (key, low) = ((self.0 >> 32) as u64, self.0 as u32);
+        let bits = if key & SIGN == 0 { !key } else { key & !SIGN };
+        (f64::from_bits(bits), u32::MAX - low)
     }
 }
 
@@ -845,7 +850,7 @@ impl Exact {
                 *g = f;
             }
             #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
-            entries.push(Entry(w * f, i as u32));
+            entries.push(Entry::new(w * f, i as u32));
         }
         self.link_start.push(self.links.len());
         self.heap = BinaryHeap::from(entries);
@@ -858,8 +863,9 @@ impl Exact {
             .filter(|&&c| c > self.n)
             .count();
         while left > 0
-            && let Some(Entry(w, i)) = self.heap.pop()
+            && let Some(entry) = self.heap.pop()
         {
+            let (w, i) = entry.parts();
             let i = i as usize;
             let (Some(&is_alive), Some(&current), Some(&f), Some(&b)) = (
                 self.alive.get(i),
@@ -898,7 +904,7 @@ impl Exact {
                         .and_then(|&c| self.count.get(c as usize))
                         .is_some_and(|&c| c > self.n);
                     if still_over && let Some(&f) = self.factor.get(j) {
-                        self.heap.push(Entry(wj * f, j32));
+                        self.heap.push(Entry::new(wj * f, j32));
                     }
                 }
             }
@@ -992,6 +998,47 @@ impl Exact {
                 if let Some(list) = self.darts_above.get_mut(x as usize) {
                     list.push(p);
                 }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The packed heap entry orders as `total_cmp` on the weight, the
+    /// lower index first on ties, and gives back what it was made from.
+    #[test]
+    fn entry_order_is_the_weights_then_the_lower_index() {
+        let weights = [
+            f64::NEG_INFINITY,
+            -3.5,
+            -1e-300,
+            -0.0,
+            0.0,
+            5e-324,
+            1e-300,
+            0.25,
+            0.250_000_000_000_000_06,
+            7.0,
+            f64::INFINITY,
+        ];
+        let indices = [0, 1, 7, u32::MAX - 1, u32::MAX];
+        let entries: Vec<(f64, u32)> = weights
+            .iter()
+            .flat_map(|&w| indices.iter().map(move |&i| (w, i)))
+            .collect();
+        for &(w, i) in &entries {
+            let (w2, i2) = Entry::new(w, i).parts();
+            assert_eq!((w2.to_bits(), i2), (w.to_bits(), i));
+            for &(v, j) in &entries {
+                let expected = w.total_cmp(&v).then(j.cmp(&i));
+                assert_eq!(
+                    Entry::new(w, i).cmp(&Entry::new(v, j)),
+                    expected,
+                    "{w} {i} {v} {j}"
+                );
             }
         }
     }
