@@ -570,12 +570,18 @@ impl Exact {
 
     /// Calls `visit` with the index of every gathered band point (dead
     /// ones included, darts not) in the band pixels of columns `x - 1` to
-    /// `x + 1`: all that can lie within `r` of a point of column `x` in row
+    /// `x + 1`, until it returns `false`: all that can lie within `r` of a point of column `x` in row
     /// `y`, as `r < 1`. The darts' search: a short pixel's darts look
     /// through these few pixels' points directly, where sorting the band
     /// into the local grid first cost more (3 % of exact mode's
     /// instructions at `n = 4`, random dropping).
-    fn near_pixel(&self, x: usize, width: usize, band_rows: usize, mut visit: impl FnMut(u32)) {
+    fn near_pixel(
+        &self,
+        x: usize,
+        width: usize,
+        band_rows: usize,
+        mut visit: impl FnMut(u32) -> bool,
+    ) {
         for row in 0..band_rows {
             let first = row * width + x.saturating_sub(1);
             let last = row * width + (x + 1).min(width - 1);
@@ -584,7 +590,9 @@ impl Exact {
             };
             #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
             for i in a..b {
-                visit(i as u32);
+                if !visit(i as u32) {
+                    return;
+                }
             }
         }
     }
@@ -654,7 +662,10 @@ impl Exact {
             thrown = thrown.max(count);
             let mut best: Option<([f64; 2], Blockers)> = None;
             for d in darts.get(..count).unwrap_or(&[]) {
-                if let Some(b) = self.blockers(window, d, (x, y), width, band_rows, take)
+                // Only a dart with fewer blockers than the best so far can
+                // be taken: the search gives up on the others early.
+                let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
+                if let Some(b) = self.blockers(window, d, (x, y), (width, band_rows), (take, cap))
                     && best.is_none_or(|(_, c)| b.count < c.count)
                 {
                     best = Some((*d, b));
@@ -737,16 +748,15 @@ impl Exact {
 
     /// The band points closer than `r` to dart `d` in pixel `(x, y)`, if
     /// they may all be removed: each in another pixel, which `take` allows
-    /// to lose it, at most [`MAX_BLOCKERS`]; and no final point above or
-    /// dart is that close.
+    /// to lose it, at most `cap` (and [`MAX_BLOCKERS`]); and no final point
+    /// above or dart is that close.
     fn blockers(
         &self,
         window: &Window,
         d: &[f64; 2],
         (x, y): (usize, usize),
-        width: usize,
-        band_rows: usize,
-        take: Take,
+        (width, band_rows): (usize, usize),
+        (take, cap): (Take, usize),
     ) -> Option<Blockers> {
         let r2 = self.radius_squared;
         let columns = self
@@ -776,14 +786,13 @@ impl Exact {
         };
         let mut ok = true;
         self.near_pixel(x, width, band_rows, |i| {
-            if !ok
-                || self.alive.get(i as usize) != Some(&true)
+            if self.alive.get(i as usize) != Some(&true)
                 || self
                     .points
                     .get(i as usize)
                     .is_none_or(|q| distance_squared(d, q) >= r2)
             {
-                return;
+                return true;
             }
             let b32 = self.pixel.get(i as usize).copied().unwrap_or(0);
             let b = b32 as usize;
@@ -797,7 +806,7 @@ impl Exact {
                 .count();
             let left = self.count.get(b).copied().unwrap_or(0);
             let may = b != x
-                && found.count < MAX_BLOCKERS
+                && found.count < cap.min(MAX_BLOCKERS)
                 && match take {
                     Take::Excess => left >= self.n + taken,
                     Take::Unsettled => left >= self.n + taken || b > x,
@@ -809,6 +818,7 @@ impl Exact {
             } else {
                 ok = false;
             }
+            ok
         });
         ok.then_some(found)
     }
