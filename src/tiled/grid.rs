@@ -51,10 +51,24 @@ pub(crate) struct RollingGrid {
     /// The whole cell's stencil without the centre, in address order: the
     /// seed's cells.
     seed_offsets: Vec<isize>,
-    /// The offset of every cache line of the block around a pick's parent
-    /// that its candidates search first (`r` from the parent's cell, plus
-    /// the reach): what [`Self::prefetch`] asks for.
-    block_lines: Vec<isize>,
+    /// The cache lines of the block around a pick's parent that its
+    /// candidates search first (`r` from the parent's cell, plus the
+    /// reach): what [`Self::prefetch`] asks for.
+    block: Block,
+}
+
+/// A square block of cells around a pick's cell, as [`RollingGrid::prefetch`]
+/// walks it: `rows` rows of cells, the first at offset `first` from the
+/// pick's cell, and in each row a cache line at each of the offsets
+/// `lines` (no rows: no prefetch). Row by row, with the offsets along a
+/// row fixed, a line costs an add and the hint: about 60 instructions a
+/// pick for 21 lines, where a list of 21 offsets cost about 130
+/// (`docs/performance-journal.md`).
+#[derive(Debug, Default)]
+struct Block {
+    rows: usize,
+    first: isize,
+    lines: Vec<isize>,
 }
 
 impl RollingGrid {
@@ -84,10 +98,10 @@ impl RollingGrid {
         seed_offsets.sort_unstable();
         // Within the L2 cache, a pick's cells are near at hand already and
         // their prefetch only costs instructions.
-        let block_lines = if prefetch {
-            block_lines(radius, side, reach, columns)
+        let block = if prefetch {
+            block(radius, side, reach, columns)
         } else {
-            Vec::new()
+            Block::default()
         };
         let count = parts(2) * parts(2);
         let parts = (0..count)
@@ -105,7 +119,7 @@ impl RollingGrid {
             radius_squared: radius * radius,
             parts,
             seed_offsets,
-            block_lines,
+            block,
         })
     }
 
@@ -126,7 +140,7 @@ impl RollingGrid {
             radius_squared: 0.0,
             parts: Vec::new(),
             seed_offsets: Vec::new(),
-            block_lines: Vec::new(),
+            block: Block::default(),
         }
     }
 
@@ -262,13 +276,32 @@ impl RollingGrid {
     /// the inner block (`r` plus the reach) is fetched.
     #[inline(always)]
     pub(crate) fn prefetch(&self, p: &[f64; 2]) {
-        if self.block_lines.is_empty() {
+        if self.block.rows == 0 {
             return;
         }
-        let (cx, cy, _) = self.locate(p);
-        let base = self.index(cx, cy);
-        for &line in &self.block_lines {
-            crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(line));
+        let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
+        let ([cx, cy], _) = locate(p, &[0.0; 2], &[self.inv_side; 2], &last, 1);
+        let mut row = self.index(cx, cy).wrapping_add_signed(self.block.first);
+        let cells = &self.cells;
+        let ask = |at: usize| crate::prefetch::prefetch(cells, at);
+        match *self.block.lines.as_slice() {
+            // At r/√2 cells: seven cells a row, three lines.
+            [a, b, c] => {
+                for _ in 0..self.block.rows {
+                    ask(row.wrapping_add_signed(a));
+                    ask(row.wrapping_add_signed(b));
+                    ask(row.wrapping_add_signed(c));
+                    row = row.wrapping_add(self.columns);
+                }
+            }
+            ref lines => {
+                for _ in 0..self.block.rows {
+                    for &line in lines {
+                        ask(row.wrapping_add_signed(line));
+                    }
+                    row = row.wrapping_add(self.columns);
+                }
+            }
         }
     }
 
@@ -326,13 +359,12 @@ impl RollingGrid {
     }
 }
 
-/// The offsets of the cache lines (64 bytes, 4 cells) covering the square
-/// of cells a pick's first candidates search: `r/side + reach` cells on
-/// each side of the parent's, about the inner half of the `2r` its
-/// candidates reach. Asking for the whole `2r` square (44 lines a pick)
-/// cost more in instructions than it saved in misses
-/// (`docs/performance-journal.md`).
-fn block_lines(radius: f64, side: f64, reach: usize, columns: usize) -> Vec<isize> {
+/// The cache lines (64 bytes, 4 cells) covering the square of cells a
+/// pick's first candidates search: `r/side + reach` cells on each side of
+/// the parent's, about the inner half of the `2r` its candidates reach.
+/// Asking for the whole `2r` square (44 lines a pick) cost more in
+/// instructions than it saved in misses (`docs/performance-journal.md`).
+fn block(radius: f64, side: f64, reach: usize, columns: usize) -> Block {
     const CELLS_PER_LINE: usize = 64 / size_of::<[f64; 2]>();
     let span = (radius / side).floor();
     #[expect(
@@ -341,18 +373,20 @@ fn block_lines(radius: f64, side: f64, reach: usize, columns: usize) -> Vec<isiz
         reason = "a few cells: r / side = √2"
     )]
     let half = (span as usize).saturating_add(reach).min(columns / 2);
-    let (Ok(half), Ok(columns)) = (isize::try_from(half), isize::try_from(columns)) else {
-        return Vec::new();
+    let (Ok(half_i), Ok(columns_i)) = (isize::try_from(half), isize::try_from(columns)) else {
+        return Block::default();
     };
     let step = isize::try_from(CELLS_PER_LINE).unwrap_or(1);
     let mut lines = Vec::new();
-    for dy in -half..=half {
-        let mut dx = -half;
-        while dx <= half {
-            lines.push(dy * columns + dx);
-            dx += step;
-        }
-        lines.push(dy * columns + half);
+    let mut dx = -half_i;
+    while dx <= half_i {
+        lines.push(dx);
+        dx += step;
     }
-    lines
+    lines.push(half_i);
+    Block {
+        rows: half.saturating_mul(2).saturating_add(1),
+        first: -half_i.saturating_mul(columns_i),
+        lines,
+    }
 }
