@@ -104,8 +104,6 @@ impl<const N: usize> Index<N> {
 /// What [`Varying::store`] did with a point.
 enum Filed {
     Yes,
-    /// The index refused it: a failed attempt.
-    Taken,
     /// Out of memory or indices: the run ends.
     Stop,
 }
@@ -295,13 +293,12 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             self.active.clear();
             return Filed::Stop;
         }
-        let Ok(index) = u32::try_from(self.points.len()) else {
+        let filed =
+            u32::try_from(self.points.len()).is_ok_and(|index| self.index.insert(index, &p, r));
+        if !filed {
+            // More points than the index can number.
             self.active.clear();
             return Filed::Stop;
-        };
-        if !self.index.insert(index, &p, r) {
-            // Its cell taken (rounding, see the index): a failed attempt.
-            return Filed::Taken;
         }
         self.points.push((p, r));
         self.active.push((p, r));
@@ -409,7 +406,6 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
                     self.remaining -= 1;
                     return Step::Made(c);
                 }
-                Filed::Taken => {}
                 Filed::Stop => return Step::Stop,
             }
         }
