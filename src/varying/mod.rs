@@ -8,7 +8,8 @@
 //! of side `r/√N`.
 //!
 //! - [`Levels`] (`levels.rs`), the usual index: a dense grid per band of
-//!   radii (a factor √2), searched with stencils of `grid/dense.rs`.
+//!   radii (a factor `2^(3/4)`, cells sized to the band's top, a cell's
+//!   extra points chained), searched with stencils of `grid/dense.rs`.
 //! - [`Lists`] (`lists.rs`), the fallback when the bands' grids would not
 //!   fit the memory budget, past 4-D, or past `r_max / r_min = 16`: a
 //!   linked list per cell of side `r_max`, every point of the 3^N cells
