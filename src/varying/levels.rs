@@ -705,6 +705,12 @@ impl<const N: usize> Levels<N> {
         if N > 3 {
             return;
         }
+        // The coarse cells a search of its candidates looks up.
+        let cell = self.coarse.cell_of(p);
+        for at in self.coarse.rows_around(&cell) {
+            crate::prefetch::prefetch(&self.masks, at);
+            crate::prefetch::prefetch(&self.largest, at);
+        }
         let Some((level, base, built, _)) = self.around(p, r) else {
             return;
         };
