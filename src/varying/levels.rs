@@ -700,7 +700,9 @@ impl<const N: usize> Levels<N> {
     }
 
     /// Starts loading the cells [`Self::seed`] will read around `p`, row
-    /// by row (up to 3-D); a hint only.
+    /// by row, and the band masks and largest radii of the coarse cells
+    /// around, which its candidates' searches look up (up to 3-D); a hint
+    /// only.
     pub(super) fn prefetch(&mut self, p: &[f64; N], r: f64) {
         if N > 3 {
             return;

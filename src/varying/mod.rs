@@ -160,9 +160,9 @@ impl<const N: usize> PoissonDisk<N> {
     /// each), when they fit the memory budget; a whole `points
     /// --radius-range` run with `r_max / r_min = 4` (a linear field) then
     /// took 1.6× the CPU time of a fixed radius making the same number
-    /// of points in 2-D (10⁶ points) and 1.4–1.6× in 3-D (3·10⁵), at a
-    /// ratio of 2 1.6× and 1.4–1.5×, on a shared machine at a load of
-    /// about 3; README has the figures.
+    /// of points in 2-D (10⁶ points) and 1.3–1.4× in 3-D (3·10⁵), at a
+    /// ratio of 2 1.6× and 1.4–1.6×, on a shared machine at loads of 2.5
+    /// to 4.2; README has the figures.
     /// Otherwise a slower index of lists per cell of side `r_max` serves,
     /// with the same points.
     ///
