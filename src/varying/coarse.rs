@@ -26,6 +26,9 @@ pub(super) struct Coarse<const N: usize> {
     /// The 3^N neighbours of a cell away from every face, as linear
     /// offsets, its own first.
     deltas: Vec<isize>,
+    /// Of those, the ones not offset along axis 0: the middles of the
+    /// 3^(N-1) rows of three cells.
+    rows: Vec<isize>,
     /// Cells in all.
     count: usize,
 }
@@ -60,7 +63,12 @@ impl<const N: usize> Coarse<N> {
                 budget: 0,
             })?;
         let mut deltas = Vec::new();
+        let mut rows = Vec::new();
         for t in 0..3_usize.pow(u32::try_from(N).unwrap_or(0)) {
+            if t % 3 == 0 {
+                // Digit 0 of axis 0: no offset along it.
+                rows.push(t);
+            }
             let (mut digits, mut delta, mut stride) = (t, 0_isize, 1_isize);
             for &m in &cells_per_axis {
                 // Digit 0 is offset 0, so that t = 0 is the cell itself.
@@ -75,12 +83,17 @@ impl<const N: usize> Coarse<N> {
             }
             deltas.push(delta);
         }
+        let rows = rows
+            .into_iter()
+            .filter_map(|t| deltas.get(t).copied())
+            .collect();
         Ok(Self {
             lo: domain.lo(),
             inv_side: 1.0 / side,
             cells_per_axis,
             periodic: domain.periodic(),
             deltas,
+            rows,
             count,
         })
     }
@@ -114,6 +127,15 @@ impl<const N: usize> Coarse<N> {
             .zip(&self.cells_per_axis)
             .rev()
             .fold(0, |acc, (&c, &m)| acc * m as usize + c as usize)
+    }
+
+    /// The linear index of the middle cell of each row of three (along
+    /// axis 0) around `cell`, away from the faces: what a prefetch of the
+    /// data hung on the 3^N cells around asks for (near a face, indices
+    /// that may lie outside the grid, which a prefetch ignores).
+    pub(super) fn rows_around(&self, cell: &[u32; N]) -> impl Iterator<Item = usize> + '_ {
+        let base = self.linear(cell);
+        self.rows.iter().map(move |&d| base.wrapping_add_signed(d))
     }
 
     /// Calls `f` on the linear index of each of the (up to) 3^N cells

@@ -8,7 +8,8 @@
 //! of side `r/√N`.
 //!
 //! - [`Levels`] (`levels.rs`), the usual index: a dense grid per band of
-//!   radii (a factor √2), searched with stencils of `grid/dense.rs`.
+//!   radii (a factor `2^(3/4)`, cells sized to the band's top, a cell's
+//!   extra points chained), searched with stencils of `grid/dense.rs`.
 //! - [`Lists`] (`lists.rs`), the fallback when the bands' grids would not
 //!   fit the memory budget, past 4-D, or past `r_max / r_min = 16`: a
 //!   linked list per cell of side `r_max`, every point of the 3^N cells
@@ -47,8 +48,8 @@ const QUICK_STRETCH: f32 = 2.0;
 type Stored<const N: usize> = ([f64; N], f64);
 
 /// Heap bytes counted per point: the point and its radius, twice (the
-/// points and the active list), and its place in a cell list (the lists
-/// index), each with room for a vector's doubling.
+/// points and the active list), and its link (the lists' next, or the levels'
+/// chain of a cell), each with room for a vector's doubling.
 fn bytes_per_point<const N: usize>() -> u64 {
     let n = u64::try_from(N).unwrap_or(u64::MAX);
     2_u64.saturating_mul(n.saturating_mul(16).saturating_add(32))
@@ -104,8 +105,6 @@ impl<const N: usize> Index<N> {
 /// What [`Varying::store`] did with a point.
 enum Filed {
     Yes,
-    /// The index refused it: a failed attempt.
-    Taken,
     /// Out of memory or indices: the run ends.
     Stop,
 }
@@ -155,14 +154,15 @@ impl<const N: usize> PoissonDisk<N> {
     ///
     /// The guarantee is symmetric, so it does not depend on which point
     /// came first. Speed: up to 4-D and `r_max / r_min <= 16`, each band
-    /// of radii (a factor √2) gets a dense grid of its own, cells of side
-    /// `r_band/√N` (together up to about twice the cells of one grid at
-    /// `r_min`, 4 bytes each), when they fit the memory budget; a whole
-    /// `points --radius-range` run with `r_max / r_min = 4` (a linear field)
-    /// then took 1.8–1.9× the CPU time of a fixed radius making the same
-    /// number of points in 2-D (10⁶ points), 2.1× in 3-D (3·10⁵; 1.9× at
-    /// a ratio of 2), on a shared machine at loads of 4 to 6; README has
-    /// the figures.
+    /// of radii (a factor `2^(3/4)`) gets a dense grid of its own, cells of
+    /// side `top/√N` for the band's top radius (together about half the
+    /// cells of one grid at `r_min` in 2-D, a quarter in 3-D, 4 bytes
+    /// each), when they fit the memory budget; a whole `points
+    /// --radius-range` run with `r_max / r_min = 4` (a linear field) then
+    /// took 1.6× the CPU time of a fixed radius making the same number
+    /// of points in 2-D (10⁶ points) and 1.3–1.4× in 3-D (3·10⁵), at a
+    /// ratio of 2 1.6× and 1.4–1.6×, on a shared machine at loads of 2.5
+    /// to 4.2; README has the figures.
     /// Otherwise a slower index of lists per cell of side `r_max` serves,
     /// with the same points.
     ///
@@ -295,13 +295,12 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             self.active.clear();
             return Filed::Stop;
         }
-        let Ok(index) = u32::try_from(self.points.len()) else {
+        let filed =
+            u32::try_from(self.points.len()).is_ok_and(|index| self.index.insert(index, &p, r));
+        if !filed {
+            // More points than the index can number.
             self.active.clear();
             return Filed::Stop;
-        };
-        if !self.index.insert(index, &p, r) {
-            // Its cell taken (rounding, see the index): a failed attempt.
-            return Filed::Taken;
         }
         self.points.push((p, r));
         self.active.push((p, r));
@@ -409,7 +408,6 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
                     self.remaining -= 1;
                     return Step::Made(c);
                 }
-                Filed::Taken => {}
                 Filed::Stop => return Step::Stop,
             }
         }
