@@ -1,7 +1,9 @@
 //! Where candidates are thrown around an active point: the candidate
 //! distributions, the sampler that draws them, and offsets drawn eight
-//! ahead ([`OffsetBatch`]). The tables behind them are in [`tables`].
+//! ahead ([`OffsetBatch`]). The tables behind them are in [`tables`]; the
+//! annulus from 4-D up, drawn ahead, in [`shell`].
 
+mod shell;
 mod tables;
 
 use tables::{
@@ -114,10 +116,13 @@ impl<const N: usize> CandidateSampler<N> {
         }
     }
 
-    /// Whether offsets come from [`OffsetBatch`]: annulus offsets in 2-D and 3-D,
-    /// which need no per-pick state and no rejection loop.
+    /// Whether offsets come from [`OffsetBatch`]: annulus offsets from 2-D
+    /// up, which need no per-pick state (from 4-D up the rejections are
+    /// done without a branch, see [`shell`]). Up to 64-D, where the cache's
+    /// quick check on the offsets drawn ahead holds
+    /// (`ConflictCache::block_relative`).
     pub(crate) fn reads_ahead(&self) -> bool {
-        self.kind == Candidates::Annulus && (N == 2 || N == 3)
+        self.kind == Candidates::Annulus && (2..=64).contains(&N)
     }
 
     /// An annulus offset drawn directly, without rejection: 2-D and 3-D.
@@ -264,6 +269,8 @@ pub(crate) struct OffsetBatch<const N: usize> {
     /// `ConflictCache::block_relative`), computed here eight at a time.
     units: [[f32; N]; AHEAD],
     used: usize,
+    /// From 4-D up, the tries kept and not yet used.
+    queue: shell::Queue<N>,
 }
 
 /// How many offsets [`OffsetBatch`] draws at once.
@@ -275,6 +282,7 @@ impl<const N: usize> OffsetBatch<N> {
             offsets: [[0.0; N]; AHEAD],
             units: [[0.0; N]; AHEAD],
             used: AHEAD,
+            queue: shell::Queue::new(),
         }
     }
 
@@ -287,7 +295,11 @@ impl<const N: usize> OffsetBatch<N> {
         rng: &mut R,
     ) -> ([f64; N], [f32; N]) {
         if self.used >= AHEAD {
-            sampler.fill_direct_annulus(rng, &mut self.offsets);
+            if N <= 3 {
+                sampler.fill_direct_annulus(rng, &mut self.offsets);
+            } else {
+                self.queue.fill(rng, sampler.radius, &mut self.offsets);
+            }
             let inv_radius = 1.0 / sampler.radius;
             for (unit, offset) in self.units.iter_mut().zip(&self.offsets) {
                 for (u, &o) in unit.iter_mut().zip(offset) {
