@@ -180,11 +180,11 @@ pub(crate) struct Sparse<const N: usize> {
     periods: [f64; N],
     radius_squared: f64,
     /// Whether a search starts loading its nearer cells' points
-    /// ([`Self::nearer_heads`]) before its own cell's check: an array store of at least
+    /// ([`Self::nearer`]) before its own cell's check: an array store of at least
     /// [`PREFETCH_CELLS`] cells.
     prefetch: bool,
     /// Whether a search checks the cells nearer on one or two axes right
-    /// after its own ([`Self::nearer_heads`]): with the array store, unless a
+    /// after its own ([`Self::nearer`]): with the array store, unless a
     /// periodic axis has fewer than 3 cells (there both neighbours are one
     /// cell, half the computed ones are other cells, and the walk's bounds
     /// on nearest images skip more: the 8-D torus at r = 0.4, two cells an
@@ -193,7 +193,7 @@ pub(crate) struct Sparse<const N: usize> {
 }
 
 impl<const N: usize> Sparse<N> {
-    /// How many cells [`Self::nearer_heads`] lists: `N` singles and
+    /// How many cells [`Self::nearer`] visits: `N` singles and
     /// `N(N-1)/2` pairs.
     const NEARER: usize = N * (N + 1) / 2;
 
@@ -492,10 +492,17 @@ impl<const N: usize> Sparse<N> {
         if self.prefetch
             && let Store::Array { entries, .. } = &self.store
         {
-            let heads = self.nearer_heads(p, &cell);
-            for &head in heads.as_flattened().iter().take(Self::NEARER) {
+            let mut heads = [[END; N]; N];
+            let slots = heads.as_flattened_mut();
+            let mut k = 0;
+            self.nearer(p, &cell, |head| {
                 crate::prefetch::prefetch(entries, head as usize);
-            }
+                if let Some(slot) = slots.get_mut(k) {
+                    *slot = head;
+                }
+                k += 1;
+                None::<()>
+            });
             near = Some(heads);
         }
         if let Some(q) = self.conflict_in(&cell, close) {
@@ -503,15 +510,25 @@ impl<const N: usize> Sparse<N> {
         }
         // Then the cells nearer on one or two axes, where most of the other
         // conflicts lie: a search that finds one there skips listing the
-        // axes' steps and the walk.
+        // axes' steps and the walk. Without the early loads, the heads are
+        // read as they are checked, up to the first conflict.
         if self.nearer
             && let Store::Array { entries, .. } = &self.store
         {
-            let heads = near.unwrap_or_else(|| self.nearer_heads(p, &cell));
-            for &head in heads.as_flattened().iter().take(Self::NEARER) {
-                if let Some(q) = first_close(entries, head, close) {
-                    return Some(q);
+            let found = if let Some(heads) = near {
+                let mut found = None;
+                for &head in heads.as_flattened().iter().take(Self::NEARER) {
+                    found = first_close(entries, head, close);
+                    if found.is_some() {
+                        break;
+                    }
                 }
+                found
+            } else {
+                self.nearer(p, &cell, |head| first_close(entries, head, close))
+            };
+            if found.is_some() {
+                return found;
             }
         }
         let mut steps = [[Step::default(); MAX_STEPS]; N];
@@ -524,20 +541,24 @@ impl<const N: usize> Sparse<N> {
         self.search(&steps, &lens, close)
     }
 
-    /// The heads of the cells next to `p`'s own (`cell`) on the nearer
-    /// side along one axis, then along two, with the array store (none
-    /// with the table): the [`Self::NEARER`] first slots hold the singles
-    /// in axis order, then the pairs `(i, j)`, `i < j`, by `j`, then `i`;
-    /// the rest the sentinel. Most conflicts not in the own cell lie in
-    /// one of them. (Axes ordered by the gap to their nearer face instead
-    /// looked at 11 % fewer cells in 5-D but took longer.) An index off the
-    /// box (a face, a periodic wrap) names another cell or none: a wasted
-    /// look, never a missed one, since the full search follows.
+    /// Calls `visit` with the head of each cell next to `p`'s own (`cell`)
+    /// on the nearer side along one axis, then along two, with the array
+    /// store, stopping at the first `Some`: [`Self::NEARER`] cells, the
+    /// singles in axis order, then the pairs `(i, j)`, `i < j`, by `j`,
+    /// then `i`. Most conflicts not in the own cell lie in one of them.
+    /// (Axes ordered by the gap to their nearer face instead looked at
+    /// 11 % fewer cells in 5-D but took longer.) An index off the box (a
+    /// face, a periodic wrap) names another cell or none: a wasted look,
+    /// never a missed one, since the full search follows.
     #[inline(always)]
-    fn nearer_heads(&self, p: &[f64; N], cell: &[i64; N]) -> [[u32; N]; N] {
-        let mut out = [[END; N]; N];
+    fn nearer<T>(
+        &self,
+        p: &[f64; N],
+        cell: &[i64; N],
+        mut visit: impl FnMut(u32) -> Option<T>,
+    ) -> Option<T> {
         let Store::Array { heads, stride, .. } = &self.store else {
-            return out;
+            return None;
         };
         let own = linear(cell, stride);
         let mut step = [0usize; N];
@@ -550,25 +571,20 @@ impl<const N: usize> Sparse<N> {
             *n = if upper { s } else { s.wrapping_neg() };
         }
         let head = |at: usize| heads.get(at).copied().unwrap_or(END);
-        let flat = out.as_flattened_mut();
-        let mut k = 0;
-        let mut put = |at: usize| {
-            if let Some(slot) = flat.get_mut(k) {
-                *slot = head(at);
-            }
-            k += 1;
-        };
-        let step_of = |i: usize| step.get(i).copied().unwrap_or(0);
-        for i in 0..N {
-            put(own.wrapping_add(step_of(i)));
-        }
-        for j in 1..N {
-            let at = own.wrapping_add(step_of(j));
-            for i in 0..j {
-                put(at.wrapping_add(step_of(i)));
+        for &a in &step {
+            if let Some(found) = visit(head(own.wrapping_add(a))) {
+                return Some(found);
             }
         }
-        out
+        for (j, &b) in step.iter().enumerate().skip(1) {
+            let at = own.wrapping_add(b);
+            for &a in step.iter().take(j) {
+                if let Some(found) = visit(head(at.wrapping_add(a))) {
+                    return Some(found);
+                }
+            }
+        }
+        None
     }
 
     /// A stored point of `cell` for which `close` holds, if any.
