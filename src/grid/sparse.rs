@@ -179,8 +179,8 @@ pub(crate) struct Sparse<const N: usize> {
     any_periodic: bool,
     periods: [f64; N],
     radius_squared: f64,
-    /// Whether a search starts loading its nearest cells' points
-    /// ([`Self::prefetch_nearer`]): an array store of at least
+    /// Whether a search starts loading its nearer cells' points
+    /// ([`Self::nearer`]) before its own cell's check: an array store of at least
     /// [`PREFETCH_CELLS`] cells.
     prefetch: bool,
     /// Whether a search checks the cells nearer on one or two axes right
@@ -193,6 +193,10 @@ pub(crate) struct Sparse<const N: usize> {
 }
 
 impl<const N: usize> Sparse<N> {
+    /// How many cells [`Self::nearer`] visits: `N` singles and
+    /// `N(N-1)/2` pairs.
+    const NEARER: usize = N * (N + 1) / 2;
+
     pub(crate) fn new(plan: &SparsePlan<N>, domain: &Domain<N>, radius: f64) -> Self {
         // The array only where planned; should it not be granted, the table
         // (whose memory is counted as it grows) serves instead.
@@ -481,20 +485,51 @@ impl<const N: usize> Sparse<N> {
         // and those skip listing the axes' steps. The walk visits it again
         // when it holds none, which costs less than a list of steps.
         let cell = self.cell_of(p);
-        if self.prefetch {
-            self.prefetch_nearer(p, &cell);
+        // The nearer cells' heads, listed once: loaded here, before the own
+        // cell's check, where the store is large enough for their points
+        // to be worth loading early.
+        let mut near = None;
+        if self.prefetch
+            && let Store::Array { entries, .. } = &self.store
+        {
+            let mut heads = [[END; N]; N];
+            let slots = heads.as_flattened_mut();
+            let mut k = 0;
+            self.nearer(p, &cell, |head| {
+                crate::prefetch::prefetch(entries, head as usize);
+                if let Some(slot) = slots.get_mut(k) {
+                    *slot = head;
+                }
+                k += 1;
+                None::<()>
+            });
+            near = Some(heads);
         }
         if let Some(q) = self.conflict_in(&cell, close) {
             return Some(q);
         }
         // Then the cells nearer on one or two axes, where most of the other
         // conflicts lie: a search that finds one there skips listing the
-        // axes' steps and the walk.
+        // axes' steps and the walk. Without the early loads, the heads are
+        // read as they are checked, up to the first conflict.
         if self.nearer
             && let Store::Array { entries, .. } = &self.store
-            && let Some(q) = self.nearer(p, &cell, |head| first_close(entries, head, close))
         {
-            return Some(q);
+            let found = if let Some(heads) = near {
+                let mut found = None;
+                for &head in heads.as_flattened().iter().take(Self::NEARER) {
+                    found = first_close(entries, head, close);
+                    if found.is_some() {
+                        break;
+                    }
+                }
+                found
+            } else {
+                self.nearer(p, &cell, |head| first_close(entries, head, close))
+            };
+            if found.is_some() {
+                return found;
+            }
         }
         let mut steps = [[Step::default(); MAX_STEPS]; N];
         let mut lens = [0usize; N];
@@ -506,25 +541,15 @@ impl<const N: usize> Sparse<N> {
         self.search(&steps, &lens, close)
     }
 
-    /// Starts loading the first point of the cells [`Self::nearer`] checks
-    /// after the own cell. Only hints: an index off the box (a face, a
-    /// periodic wrap) names another cell or none, which costs a wasted load
-    /// and changes nothing.
-    #[inline(always)]
-    fn prefetch_nearer(&self, p: &[f64; N], cell: &[i64; N]) {
-        if let Store::Array { entries, .. } = &self.store {
-            self.nearer(p, cell, |head| {
-                crate::prefetch::prefetch(entries, head as usize);
-                None::<()>
-            });
-        }
-    }
-
     /// Calls `visit` with the head of each cell next to `p`'s own (`cell`)
     /// on the nearer side along one axis, then along two, with the array
-    /// store, stopping at the first `Some`. An index off the box (a face, a
-    /// periodic wrap) names another cell or none: a wasted look, never a
-    /// missed one, since the full search follows.
+    /// store, stopping at the first `Some`: [`Self::NEARER`] cells, the
+    /// singles in axis order, then the pairs `(i, j)`, `i < j`, by `j`,
+    /// then `i`. Most conflicts not in the own cell lie in one of them.
+    /// (Axes ordered by the gap to their nearer face instead looked at
+    /// 11 % fewer cells in 5-D but took longer.) An index off the box (a
+    /// face, a periodic wrap) names another cell or none: a wasted look,
+    /// never a missed one, since the full search follows.
     #[inline(always)]
     fn nearer<T>(
         &self,
@@ -536,25 +561,25 @@ impl<const N: usize> Sparse<N> {
             return None;
         };
         let own = linear(cell, stride);
-        let mut near = [0usize; N];
+        let mut step = [0usize; N];
         let axes = self.lo.iter().zip(&self.inv_side).zip(stride);
         for (n, ((&c, x), ((lo, inv_side), &s))) in
-            near.iter_mut().zip(cell.iter().zip(p).zip(axes))
+            step.iter_mut().zip(cell.iter().zip(p).zip(axes))
         {
             #[expect(clippy::cast_precision_loss, reason = "cell indices are <= 2^40")]
             let upper = (x - lo) * inv_side - c as f64 >= 0.5;
             *n = if upper { s } else { s.wrapping_neg() };
         }
         let head = |at: usize| heads.get(at).copied().unwrap_or(END);
-        for &a in &near {
+        for &a in &step {
             if let Some(found) = visit(head(own.wrapping_add(a))) {
                 return Some(found);
             }
         }
-        for (i, &a) in near.iter().enumerate() {
-            let at = own.wrapping_add(a);
-            for &b in near.iter().skip(i + 1) {
-                if let Some(found) = visit(head(at.wrapping_add(b))) {
+        for (j, &b) in step.iter().enumerate().skip(1) {
+            let at = own.wrapping_add(b);
+            for &a in step.iter().take(j) {
+                if let Some(found) = visit(head(at.wrapping_add(a))) {
                     return Some(found);
                 }
             }
