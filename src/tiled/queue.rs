@@ -110,7 +110,6 @@ impl BandQueue {
     }
 
     /// Queues `point` in bucket `bucket`.
-    #[inline]
     pub(crate) fn push_in(&mut self, point: [f64; 2], bucket: u64) {
         if self.buckets.is_empty() {
             self.base = bucket;

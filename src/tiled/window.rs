@@ -421,7 +421,6 @@ impl Window {
     /// `active` to its active points (the paper's scheme). Returns `false`
     /// (storing nothing) if its cell is taken, which only rounding can
     /// cause; the caller treats it as a failed attempt.
-    #[inline(always)]
     pub(crate) fn insert(
         &mut self,
         p: [f64; 2],
