@@ -631,7 +631,6 @@ impl<R: Rng> Pixels<R> {
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
-                clippy::cast_possible_wrap,
                 reason = "a point of the raster: in 0..count; through i64, cheaper than f64 -> usize"
             )]
             let b = ((p[0] + shift) * inv_width) as i64 as usize;
