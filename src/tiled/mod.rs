@@ -631,9 +631,9 @@ impl<R: Rng> Pixels<R> {
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
-                reason = "a point of the raster: in 0..count"
+                reason = "a point of the raster: in 0..count; through i64, cheaper than f64 -> usize"
             )]
-            let b = ((p[0] + shift) * inv_width) as usize;
+            let b = ((p[0] + shift) * inv_width) as i64 as usize;
             b.min(count - 1)
         };
         if self.blocks.len() < count {
@@ -824,12 +824,14 @@ impl<R: Rng> Pixels<R> {
                 cache.push(&q);
                 continue;
             }
+            // Through u32 (cheaper than f64 -> usize on x86-64): the raster
+            // is at most 2^32 - 1 pixels a side.
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
                 reason = "inside the raster, so in 0..width and 0..height"
             )]
-            let pixel = (c[0] as usize, c[1] as usize);
+            let pixel = (c[0] as u32 as usize, c[1] as u32 as usize);
             let list = only_current || self.exact.is_some();
             if self.window.insert(c, pixel, (list, only_current)) {
                 return Some(c);

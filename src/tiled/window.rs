@@ -351,7 +351,8 @@ impl Window {
                     clippy::cast_sign_loss,
                     reason = "a saturating cast; only used when inside the raster"
                 )]
-                let px = if inside { p[0] as usize } else { width };
+                // Through u32, cheaper than f64 -> usize: pixel columns < 2^32.
+                let px = if inside { p[0] as u32 as usize } else { width };
                 if let Some(at) = next.get_mut(px) {
                     if let Some(slot) = row.get_mut(*at) {
                         *slot = *p;
