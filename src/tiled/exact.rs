@@ -157,6 +157,12 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
     beta
 }
 
+/// Pixel column `x` and its neighbours inside a raster `width` wide: all
+/// the columns a point of column `x` can be closer than `r` to, as `r < 1`.
+fn columns_around(x: usize, width: usize) -> core::ops::RangeInclusive<usize> {
+    x.saturating_sub(1)..=(x + 1).min(width.saturating_sub(1))
+}
+
 /// A heap entry: a point's weight when pushed (stale if it changed since)
 /// and its index, packed into one integer whose order is the weights'
 /// `total_cmp`, ties going to the lower index: the heap then compares
@@ -481,7 +487,7 @@ impl Exact {
             let x = b as usize % width;
             let near = self
                 .darts_above
-                .get(x.saturating_sub(1)..=(x + 1).min(width - 1))
+                .get(columns_around(x, width))
                 .unwrap_or(&[])
                 .iter()
                 .flatten()
@@ -582,9 +588,10 @@ impl Exact {
         band_rows: usize,
         mut visit: impl FnMut(u32) -> bool,
     ) {
+        let columns = columns_around(x, width);
         for row in 0..band_rows {
-            let first = row * width + x.saturating_sub(1);
-            let last = row * width + (x + 1).min(width - 1);
+            let first = row * width + columns.start();
+            let last = row * width + columns.end();
             let (Some(&a), Some(&b)) = (self.start.get(first), self.start.get(last + 1)) else {
                 continue;
             };
@@ -761,7 +768,7 @@ impl Exact {
         let r2 = self.radius_squared;
         let columns = self
             .dart_columns
-            .get(x.saturating_sub(1)..=(x + 1).min(width - 1))
+            .get(columns_around(x, width))
             .unwrap_or(&[]);
         for &i in columns.iter().flatten() {
             if self

@@ -207,10 +207,16 @@ impl RollingGrid {
     /// cell it lies in.
     #[inline(always)]
     fn locate(&self, p: &[f64; 2]) -> (usize, usize, usize) {
-        let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
-        let inv_side = [self.inv_side; 2];
-        let ([cx, cy], part) = locate(p, &[0.0; 2], &inv_side, &last, parts(2));
+        let ([cx, cy], part) = self.locate_in(p, parts(2));
         (cx, cy, part)
+    }
+
+    /// `p`'s cell and which of `parts` slices an axis of it `p` lies in
+    /// (with 1, the prefetch's case, always part 0).
+    #[inline(always)]
+    fn locate_in(&self, p: &[f64; 2], parts: usize) -> ([usize; 2], usize) {
+        let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
+        locate(p, &[0.0; 2], &[self.inv_side; 2], &last, parts)
     }
 
     /// A stored point closer than `r` to `p` (inside the raster, in a row
@@ -279,8 +285,7 @@ impl RollingGrid {
         if self.block.rows == 0 {
             return;
         }
-        let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
-        let ([cx, cy], _) = locate(p, &[0.0; 2], &[self.inv_side; 2], &last, 1);
+        let ([cx, cy], _) = self.locate_in(p, 1);
         let mut row = self.index(cx, cy).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
         let ask = |at: usize| crate::prefetch::prefetch(cells, at);
