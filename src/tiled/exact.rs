@@ -252,6 +252,10 @@ pub(crate) struct Exact {
     factor: Vec<f64>,
     link_start: Vec<usize>,
     links: Vec<(u32, f64)>,
+    /// Whether each point's pixel is over `n` as elimination starts, and
+    /// each pair of neighbours closer than `2rₑ` with its weight term.
+    over: Vec<bool>,
+    pairs: Vec<(u32, u32, f64)>,
     heap: BinaryHeap<Entry>,
     /// Darts placed in this band (indices into `points`).
     darts: Vec<u32>,
@@ -325,6 +329,8 @@ impl Exact {
             factor: Vec::new(),
             link_start: Vec::new(),
             links: Vec::new(),
+            over: Vec::new(),
+            pairs: Vec::new(),
             heap: BinaryHeap::new(),
             darts: Vec::new(),
             dart_columns: Vec::new(),
@@ -830,6 +836,107 @@ impl Exact {
         ok.then_some(found)
     }
 
+    /// Step 3's neighbour lists: for every live point of a pixel over `n`
+    /// (`over`), its live neighbours closer than `2rₑ` with their weight
+    /// terms, in `links[link_start[i]..link_start[i + 1]]`, in the order of
+    /// the local grid (`cell_items`), which is the order [`Self::near`]
+    /// meets them in. Each pair is found once, from the end that comes
+    /// first in that order, looking only forward: the rest of its own
+    /// cell row, then the cell rows below; its term (`distance_squared` is
+    /// the same both ways round, bit for bit) goes to both ends' lists.
+    fn pair_terms(&mut self, width: usize, band_rows: usize) {
+        let n = self.n;
+        self.over.clear();
+        self.over
+            .extend(self.alive.iter().zip(&self.pixel).map(|(&a, &b)| {
+                a && self.count.get(b as usize).is_some_and(|&c| c > n)
+            }));
+        let reach2 = self.reach * self.reach;
+        let columns = width * self.cells;
+        let rows = band_rows * self.cells;
+        let k = self.cell_reach;
+        let mut pairs = core::mem::take(&mut self.pairs);
+        pairs.clear();
+        for (a, &i) in self.cell_items.iter().enumerate() {
+            let (Some(&c), Some(&p), Some(&over_i)) = (
+                self.cell_of.get(i as usize),
+                self.points.get(i as usize),
+                self.over.get(i as usize),
+            ) else {
+                continue;
+            };
+            let (cx, cy) = (c % columns, c / columns);
+            let (x0, x1) = (cx.saturating_sub(k), (cx + k).min(columns - 1));
+            for yy in cy..=(cy + k).min(rows - 1) {
+                let first = if yy == cy {
+                    a + 1
+                } else {
+                    self.cell_start.get(yy * columns + x0).copied().unwrap_or(0)
+                };
+                let last = self
+                    .cell_start
+                    .get(yy * columns + x1 + 1)
+                    .copied()
+                    .unwrap_or(0);
+                for &j in self.cell_items.get(first..last).unwrap_or(&[]) {
+                    if (over_i || self.over.get(j as usize) == Some(&true))
+                        && let Some(q) = self.points.get(j as usize)
+                    {
+                        let d2 = distance_squared(&p, q);
+                        if d2 < reach2 {
+                            pairs.push((i, j, self.weight_of(d2)));
+                        }
+                    }
+                }
+            }
+        }
+        // A counting sort of the pairs by end, stable: each list keeps the
+        // grid order (the pairs where the point is the later end come
+        // first, in the order of their first ends, then its own).
+        let total = self.points.len();
+        self.link_start.clear();
+        self.link_start.resize(total + 1, 0);
+        for &(i, j, _) in &pairs {
+            for e in [i, j] {
+                if self.over.get(e as usize) == Some(&true)
+                    && let Some(s) = self.link_start.get_mut(e as usize + 1)
+                {
+                    *s += 1;
+                }
+            }
+        }
+        let mut sum = 0;
+        for s in &mut self.link_start {
+            sum += *s;
+            *s = sum;
+        }
+        self.links.clear();
+        self.links.resize(sum, (0, 0.0));
+        // `link_start[e]` walks up as e's list fills; shifted back after.
+        for &(i, j, t) in &pairs {
+            for (e, other) in [(i, j), (j, i)] {
+                if self.over.get(e as usize) == Some(&true)
+                    && let Some(at) = self.link_start.get_mut(e as usize)
+                {
+                    if let Some(slot) = self.links.get_mut(*at) {
+                        *slot = (other, t);
+                    }
+                    *at += 1;
+                }
+            }
+        }
+        self.pairs = pairs;
+        for e in (1..=total).rev() {
+            let prev = self.link_start.get(e - 1).copied().unwrap_or(0);
+            if let Some(s) = self.link_start.get_mut(e) {
+                *s = prev;
+            }
+        }
+        if let Some(s) = self.link_start.first_mut() {
+            *s = 0;
+        }
+    }
+
     /// Step 3, [`ExactMethod::Eliminate`]: weighted sample elimination of
     /// the band until every pixel of row `y` is down to `n`: from then on
     /// no point of row `y` can go, so the rest of row `y + 1`'s thinning,
@@ -842,40 +949,25 @@ impl Exact {
         self.weight.resize(total, 0.0);
         self.factor.clear();
         self.factor.resize(total, 1.0);
-        self.link_start.clear();
-        self.links.clear();
-        let reach2 = self.reach * self.reach;
+        self.pair_terms(width, band_rows);
         let mut entries = core::mem::take(&mut self.heap).into_vec();
         entries.clear();
         for i in 0..total {
-            self.link_start.push(self.links.len());
-            let (Some(&p), Some(true), Some(&b)) = (
+            let (Some(&p), Some(true), Some(&b), Some(&a), Some(&z)) = (
                 self.points.get(i),
-                self.alive.get(i).copied(),
+                self.over.get(i).copied(),
                 self.pixel.get(i),
+                self.link_start.get(i),
+                self.link_start.get(i + 1),
             ) else {
                 continue;
             };
-            let over = self.count.get(b as usize).is_some_and(|&c| c > self.n);
-            if !over {
-                continue;
-            }
+            // The terms in the order the neighbours lie in the local grid,
+            // as a search around the point meets them.
             let mut w = 0.0;
-            let mut links = core::mem::take(&mut self.links);
-            self.near(&p, y, width, band_rows, |j| {
-                if j as usize != i
-                    && self.alive.get(j as usize) == Some(&true)
-                    && let Some(q) = self.points.get(j as usize)
-                {
-                    let d2 = distance_squared(&p, q);
-                    if d2 < reach2 {
-                        let t = self.weight_of(d2);
-                        w += t;
-                        links.push((j, t));
-                    }
-                }
-            });
-            self.links = links;
+            for &(_, t) in self.links.get(a..z).unwrap_or(&[]) {
+                w += t;
+            }
             if p[1] - top < self.reach {
                 w += self
                     .final_above(window, y, b as usize % width, width)
@@ -890,7 +982,6 @@ impl Exact {
             #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
             entries.push(Entry::new(w * f, i as u32));
         }
-        self.link_start.push(self.links.len());
         self.heap = BinaryHeap::from(entries);
         // Pixels of row `y` still over `n`: the loop ends when none is.
         let mut left = self
