@@ -257,6 +257,8 @@ pub(crate) struct Exact {
     over: Vec<bool>,
     pairs: Vec<(u32, u32, f64)>,
     heap: BinaryHeap<Entry>,
+    /// The weights elimination starts from, largest first.
+    sorted: Vec<Entry>,
     /// Darts placed in this band (indices into `points`).
     darts: Vec<u32>,
     /// The same darts by pixel column, for [`Self::blockers`]: a dart
@@ -332,6 +334,7 @@ impl Exact {
             over: Vec::new(),
             pairs: Vec::new(),
             heap: BinaryHeap::new(),
+            sorted: Vec::new(),
             darts: Vec::new(),
             dart_columns: Vec::new(),
             darts_above: Vec::new(),
@@ -950,8 +953,9 @@ impl Exact {
         self.factor.clear();
         self.factor.resize(total, 1.0);
         self.pair_terms(width, band_rows);
-        let mut entries = core::mem::take(&mut self.heap).into_vec();
+        let mut entries = core::mem::take(&mut self.sorted);
         entries.clear();
+        self.heap.clear();
         for i in 0..total {
             let (Some(&p), Some(true), Some(&b), Some(&a), Some(&z)) = (
                 self.points.get(i),
@@ -982,7 +986,15 @@ impl Exact {
             #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
             entries.push(Entry::new(w * f, i as u32));
         }
-        self.heap = BinaryHeap::from(entries);
+        // Largest first. Most entries are popped before row `y` is done
+        // (about 1.1 pops an entry at `n = 4`): sorting them once costs
+        // less than a heap of them all; the heap holds only the weights
+        // lowered since, and each pop takes the larger of the two fronts.
+        // All keys differ (the index is part of them), so the pops come in
+        // the order one heap of everything gave.
+        entries.sort_unstable_by(|a, b| b.cmp(a));
+        self.sorted = entries;
+        let mut next = 0;
         // Pixels of row `y` still over `n`: the loop ends when none is.
         let mut left = self
             .count
@@ -992,7 +1004,17 @@ impl Exact {
             .filter(|&&c| c > self.n)
             .count();
         while left > 0
-            && let Some(entry) = self.heap.pop()
+            && let Some(entry) = match (self.sorted.get(next), self.heap.peek()) {
+                (Some(&e), Some(&h)) if e > h => {
+                    next += 1;
+                    Some(e)
+                }
+                (Some(&e), None) => {
+                    next += 1;
+                    Some(e)
+                }
+                _ => self.heap.pop(),
+            }
         {
             let (w, i) = entry.parts();
             let i = i as usize;
