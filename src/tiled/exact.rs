@@ -246,16 +246,13 @@ pub(crate) struct Exact {
     cell_start: Vec<usize>,
     cell_of: Vec<usize>,
     cell_items: Vec<u32>,
-    /// Elimination: weights, edge factors ([`Self::edge_factor`]), and
-    /// each point's neighbours with their weight terms.
+    /// Elimination: weights and edge factors ([`Self::edge_factor`]).
     weight: Vec<f64>,
     factor: Vec<f64>,
-    link_start: Vec<usize>,
-    links: Vec<(u32, f64)>,
-    /// Whether each point's pixel is over `n` as elimination starts, and
-    /// each pair of neighbours closer than `2rₑ` with its weight term.
+    /// Whether each point's pixel is over `n` as elimination starts.
     over: Vec<bool>,
-    pairs: Vec<(u32, u32, f64)>,
+    /// A removed point's live neighbours and their weight terms.
+    neighbours: Vec<(u32, f64)>,
     heap: BinaryHeap<Entry>,
     /// The weights elimination starts from, largest first.
     sorted: Vec<Entry>,
@@ -329,10 +326,8 @@ impl Exact {
             cell_items: Vec::new(),
             weight: Vec::new(),
             factor: Vec::new(),
-            link_start: Vec::new(),
-            links: Vec::new(),
             over: Vec::new(),
-            pairs: Vec::new(),
+            neighbours: Vec::new(),
             heap: BinaryHeap::new(),
             sorted: Vec::new(),
             darts: Vec::new(),
@@ -839,15 +834,18 @@ impl Exact {
         ok.then_some(found)
     }
 
-    /// Step 3's neighbour lists: for every live point of a pixel over `n`
-    /// (`over`), its live neighbours closer than `2rₑ` with their weight
-    /// terms, in `links[link_start[i]..link_start[i + 1]]`, in the order of
+    /// Step 3's starting weights, without the final points above: for
+    /// every live point of a pixel over `n` (`over`), the sum of its weight
+    /// terms over the live points closer than `2rₑ`, added in the order of
     /// the local grid (`cell_items`), which is the order [`Self::near`]
     /// meets them in. Each pair is found once, from the end that comes
-    /// first in that order, looking only forward: the rest of its own
-    /// cell row, then the cell rows below; its term (`distance_squared` is
-    /// the same both ways round, bit for bit) goes to both ends' lists.
-    fn pair_terms(&mut self, width: usize, band_rows: usize) {
+    /// first in that order, looking only forward: the rest of its own cell
+    /// row, then the cell rows below; its term (`distance_squared` is the
+    /// same both ways round, bit for bit) is added to both ends at once.
+    /// Each end still gets its terms in grid order: first those of the
+    /// pairs where it is the later end, as the earlier ends come, then its
+    /// own.
+    fn pair_weights(&mut self, width: usize, band_rows: usize) {
         let n = self.n;
         self.over.clear();
         self.over
@@ -858,8 +856,7 @@ impl Exact {
         let columns = width * self.cells;
         let rows = band_rows * self.cells;
         let k = self.cell_reach;
-        let mut pairs = core::mem::take(&mut self.pairs);
-        pairs.clear();
+        let mut weight = core::mem::take(&mut self.weight);
         for (a, &i) in self.cell_items.iter().enumerate() {
             let (Some(&c), Some(&p), Some(&over_i)) = (
                 self.cell_of.get(i as usize),
@@ -868,6 +865,7 @@ impl Exact {
             ) else {
                 continue;
             };
+            let mut w = weight.get(i as usize).copied().unwrap_or(0.0);
             let (cx, cy) = (c % columns, c / columns);
             let (x0, x1) = (cx.saturating_sub(k), (cx + k).min(columns - 1));
             for yy in cy..=(cy + k).min(rows - 1) {
@@ -882,62 +880,50 @@ impl Exact {
                     .copied()
                     .unwrap_or(0);
                 for &j in self.cell_items.get(first..last).unwrap_or(&[]) {
-                    if (over_i || self.over.get(j as usize) == Some(&true))
+                    let over_j = self.over.get(j as usize) == Some(&true);
+                    if (over_i || over_j)
                         && let Some(q) = self.points.get(j as usize)
                     {
                         let d2 = distance_squared(&p, q);
                         if d2 < reach2 {
-                            pairs.push((i, j, self.weight_of(d2)));
+                            let t = self.weight_of(d2);
+                            w += t;
+                            if over_j && let Some(wj) = weight.get_mut(j as usize) {
+                                *wj += t;
+                            }
                         }
                     }
                 }
             }
-        }
-        // A counting sort of the pairs by end, stable: each list keeps the
-        // grid order (the pairs where the point is the later end come
-        // first, in the order of their first ends, then its own).
-        let total = self.points.len();
-        self.link_start.clear();
-        self.link_start.resize(total + 1, 0);
-        for &(i, j, _) in &pairs {
-            for e in [i, j] {
-                if self.over.get(e as usize) == Some(&true)
-                    && let Some(s) = self.link_start.get_mut(e as usize + 1)
-                {
-                    *s += 1;
-                }
+            if over_i && let Some(slot) = weight.get_mut(i as usize) {
+                *slot = w;
             }
         }
-        let mut sum = 0;
-        for s in &mut self.link_start {
-            sum += *s;
-            *s = sum;
-        }
-        self.links.clear();
-        self.links.resize(sum, (0, 0.0));
-        // `link_start[e]` walks up as e's list fills; shifted back after.
-        for &(i, j, t) in &pairs {
-            for (e, other) in [(i, j), (j, i)] {
-                if self.over.get(e as usize) == Some(&true)
-                    && let Some(at) = self.link_start.get_mut(e as usize)
+        self.weight = weight;
+    }
+
+    /// The live band points closer than `2rₑ` to point `i`, with their
+    /// weight terms, into `neighbours`: what `i`'s removal takes from
+    /// their weights (the same terms, bit for bit, as
+    /// [`Self::pair_weights`] added).
+    fn neighbours_of(&mut self, i: usize, y: usize, width: usize, band_rows: usize) {
+        let mut found = core::mem::take(&mut self.neighbours);
+        found.clear();
+        if let Some(&p) = self.points.get(i) {
+            let reach2 = self.reach * self.reach;
+            self.near(&p, y, width, band_rows, |j| {
+                if j as usize != i
+                    && self.alive.get(j as usize) == Some(&true)
+                    && let Some(q) = self.points.get(j as usize)
                 {
-                    if let Some(slot) = self.links.get_mut(*at) {
-                        *slot = (other, t);
+                    let d2 = distance_squared(&p, q);
+                    if d2 < reach2 {
+                        found.push((j, self.weight_of(d2)));
                     }
-                    *at += 1;
                 }
-            }
+            });
         }
-        self.pairs = pairs;
-        for e in (1..=total).rev() {
-            let prev = self.link_start.get(e - 1).copied().unwrap_or(0);
-            if let Some(s) = self.link_start.get_mut(e) {
-                *s = prev;
-            }
-        }
-        if let Some(s) = self.link_start.first_mut() {
-            *s = 0;
-        }
+        self.neighbours = found;
     }
 
     /// Step 3, [`ExactMethod::Eliminate`]: weighted sample elimination of
@@ -952,26 +938,20 @@ impl Exact {
         self.weight.resize(total, 0.0);
         self.factor.clear();
         self.factor.resize(total, 1.0);
-        self.pair_terms(width, band_rows);
+        self.pair_weights(width, band_rows);
         let mut entries = core::mem::take(&mut self.sorted);
         entries.clear();
         self.heap.clear();
         for i in 0..total {
-            let (Some(&p), Some(true), Some(&b), Some(&a), Some(&z)) = (
+            let (Some(&p), Some(true), Some(&b), Some(&w)) = (
                 self.points.get(i),
                 self.over.get(i).copied(),
                 self.pixel.get(i),
-                self.link_start.get(i),
-                self.link_start.get(i + 1),
+                self.weight.get(i),
             ) else {
                 continue;
             };
-            // The terms in the order the neighbours lie in the local grid,
-            // as a search around the point meets them.
-            let mut w = 0.0;
-            for &(_, t) in self.links.get(a..z).unwrap_or(&[]) {
-                w += t;
-            }
+            let mut w = w;
             if p[1] - top < self.reach {
                 w += self
                     .final_above(window, y, b as usize % width, width)
@@ -1036,17 +1016,12 @@ impl Exact {
             if (b as usize) < width && self.count.get(b as usize) == Some(&self.n) {
                 left -= 1;
             }
-            let (Some(&a), Some(&z)) = (self.link_start.get(i), self.link_start.get(i + 1)) else {
-                continue;
-            };
-            for k in a..z {
-                let Some(&(j32, t)) = self.links.get(k) else {
-                    continue;
-                };
+            // Its neighbours are looked up again, rather than kept from
+            // the start: about one point in five is removed.
+            self.neighbours_of(i, y, width, band_rows);
+            for &(j32, t) in &self.neighbours {
                 let j = j32 as usize;
-                if self.alive.get(j) == Some(&true)
-                    && let Some(wj) = self.weight.get_mut(j)
-                {
+                if let Some(wj) = self.weight.get_mut(j) {
                     *wj -= t;
                     let wj = *wj;
                     let still_over = self
