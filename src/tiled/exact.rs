@@ -848,10 +848,12 @@ impl Exact {
     fn pair_weights(&mut self, width: usize, band_rows: usize) {
         let n = self.n;
         self.over.clear();
-        self.over
-            .extend(self.alive.iter().zip(&self.pixel).map(|(&a, &b)| {
-                a && self.count.get(b as usize).is_some_and(|&c| c > n)
-            }));
+        self.over.extend(
+            self.alive
+                .iter()
+                .zip(&self.pixel)
+                .map(|(&a, &b)| a && self.count.get(b as usize).is_some_and(|&c| c > n)),
+        );
         let reach2 = self.reach * self.reach;
         let columns = width * self.cells;
         let rows = band_rows * self.cells;
