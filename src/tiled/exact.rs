@@ -270,6 +270,14 @@ pub(crate) struct Exact {
     /// other final point is a sweep point, as the band's points are, and
     /// `r < 1` keeps older rows out of reach).
     darts_above: Vec<Vec<[f64; 2]>>,
+    /// The final points of the row settled last (`strip_row`) within
+    /// `2rₑ` of its bottom edge (with a margin), by pixel column, in the
+    /// order of the pixels' final points: the only ones whose weight
+    /// terms on the band's points are not zero, when `2rₑ <= 1` (`rows_up`
+    /// 1). Elimination adds their terms in that order, skipping only
+    /// zeros, which leaves the sums' bits as they were.
+    strip: Vec<Vec<[f64; 2]>>,
+    strip_row: Option<usize>,
     /// Whether the local grid holds this band's points.
     indexed: bool,
 }
@@ -333,6 +341,8 @@ impl Exact {
             darts: Vec::new(),
             dart_columns: Vec::new(),
             darts_above: Vec::new(),
+            strip: Vec::new(),
+            strip_row: None,
             indexed: false,
         }
     }
@@ -955,10 +965,20 @@ impl Exact {
             };
             let mut w = w;
             if p[1] - top < self.reach {
-                w += self
-                    .final_above(window, y, b as usize % width, width)
-                    .map(|q| self.weight_of(distance_squared(&p, q)))
-                    .sum::<f64>();
+                let x = b as usize % width;
+                w += if y > 0 && self.strip_row == Some(y - 1) && window.holds_row(y - 1) {
+                    self.strip
+                        .get(columns_around(x, width))
+                        .unwrap_or(&[])
+                        .iter()
+                        .flatten()
+                        .map(|q| self.weight_of(distance_squared(&p, q)))
+                        .sum::<f64>()
+                } else {
+                    self.final_above(window, y, x, width)
+                        .map(|q| self.weight_of(distance_squared(&p, q)))
+                        .sum::<f64>()
+                };
             }
             let f = self.edge_factor(i);
             if let (Some(slot), Some(g)) = (self.weight.get_mut(i), self.factor.get_mut(i)) {
@@ -1127,6 +1147,27 @@ impl Exact {
                     list.push(p);
                 }
             }
+        }
+        self.strip_row = None;
+        if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
+            // Anything lower lies more than `2rₑ` above every point of the
+            // rows below (which start at `y + 1`, up to rounding: hence
+            // the margin, far above it).
+            #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+            let low = (y + 1) as f64 - self.reach - 1e-6;
+            self.strip.resize_with(width, Vec::new);
+            for (x, list) in self.strip.iter_mut().enumerate() {
+                list.clear();
+                list.extend(
+                    window
+                        .slot(x, y)
+                        .kept
+                        .iter()
+                        .filter(|q| q[1] >= low)
+                        .copied(),
+                );
+            }
+            self.strip_row = Some(y);
         }
     }
 }
