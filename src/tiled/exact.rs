@@ -246,13 +246,16 @@ pub(crate) struct Exact {
     cell_start: Vec<usize>,
     cell_of: Vec<usize>,
     cell_items: Vec<u32>,
-    /// Elimination: weights, edge factors ([`Self::edge_factor`]), and
-    /// each point's neighbours with their weight terms.
+    /// Elimination: weights and edge factors ([`Self::edge_factor`]).
     weight: Vec<f64>,
     factor: Vec<f64>,
-    link_start: Vec<usize>,
-    links: Vec<(u32, f64)>,
+    /// Whether each point's pixel is over `n` as elimination starts.
+    over: Vec<bool>,
+    /// A removed point's live neighbours and their weight terms.
+    neighbours: Vec<(u32, f64)>,
     heap: BinaryHeap<Entry>,
+    /// The weights elimination starts from, largest first.
+    sorted: Vec<Entry>,
     /// Darts placed in this band (indices into `points`).
     darts: Vec<u32>,
     /// The same darts by pixel column, for [`Self::blockers`]: a dart
@@ -267,6 +270,14 @@ pub(crate) struct Exact {
     /// other final point is a sweep point, as the band's points are, and
     /// `r < 1` keeps older rows out of reach).
     darts_above: Vec<Vec<[f64; 2]>>,
+    /// The final points of the row settled last (`strip_row`) within
+    /// `2rₑ` of its bottom edge (with a margin), by pixel column, in the
+    /// order of the pixels' final points: the only ones whose weight
+    /// terms on the band's points are not zero, when `2rₑ <= 1` (`rows_up`
+    /// 1). Elimination adds their terms in that order, skipping only
+    /// zeros, which leaves the sums' bits as they were.
+    strip: Vec<Vec<[f64; 2]>>,
+    strip_row: Option<usize>,
     /// Whether the local grid holds this band's points.
     indexed: bool,
 }
@@ -323,12 +334,15 @@ impl Exact {
             cell_items: Vec::new(),
             weight: Vec::new(),
             factor: Vec::new(),
-            link_start: Vec::new(),
-            links: Vec::new(),
+            over: Vec::new(),
+            neighbours: Vec::new(),
             heap: BinaryHeap::new(),
+            sorted: Vec::new(),
             darts: Vec::new(),
             dart_columns: Vec::new(),
             darts_above: Vec::new(),
+            strip: Vec::new(),
+            strip_row: None,
             indexed: false,
         }
     }
@@ -830,6 +844,100 @@ impl Exact {
         ok.then_some(found)
     }
 
+    /// Step 3's starting weights, without the final points above: for
+    /// every live point of a pixel over `n` (`over`), the sum of its weight
+    /// terms over the live points closer than `2rₑ`, added in the order of
+    /// the local grid (`cell_items`), which is the order [`Self::near`]
+    /// meets them in. Each pair is found once, from the end that comes
+    /// first in that order, looking only forward: the rest of its own cell
+    /// row, then the cell rows below; its term (`distance_squared` is the
+    /// same both ways round, bit for bit) is added to both ends at once.
+    /// Each end still gets its terms in grid order: first those of the
+    /// pairs where it is the later end, as the earlier ends come, then its
+    /// own.
+    fn pair_weights(&mut self, width: usize, band_rows: usize) {
+        let n = self.n;
+        self.over.clear();
+        self.over.extend(
+            self.alive
+                .iter()
+                .zip(&self.pixel)
+                .map(|(&a, &b)| a && self.count.get(b as usize).is_some_and(|&c| c > n)),
+        );
+        let reach2 = self.reach * self.reach;
+        let columns = width * self.cells;
+        let rows = band_rows * self.cells;
+        let k = self.cell_reach;
+        let mut weight = core::mem::take(&mut self.weight);
+        for (a, &i) in self.cell_items.iter().enumerate() {
+            let (Some(&c), Some(&p), Some(&over_i)) = (
+                self.cell_of.get(i as usize),
+                self.points.get(i as usize),
+                self.over.get(i as usize),
+            ) else {
+                continue;
+            };
+            let mut w = weight.get(i as usize).copied().unwrap_or(0.0);
+            let (cx, cy) = (c % columns, c / columns);
+            let (x0, x1) = (cx.saturating_sub(k), (cx + k).min(columns - 1));
+            for yy in cy..=(cy + k).min(rows - 1) {
+                let first = if yy == cy {
+                    a + 1
+                } else {
+                    self.cell_start.get(yy * columns + x0).copied().unwrap_or(0)
+                };
+                let last = self
+                    .cell_start
+                    .get(yy * columns + x1 + 1)
+                    .copied()
+                    .unwrap_or(0);
+                for &j in self.cell_items.get(first..last).unwrap_or(&[]) {
+                    let over_j = self.over.get(j as usize) == Some(&true);
+                    if (over_i || over_j)
+                        && let Some(q) = self.points.get(j as usize)
+                    {
+                        let d2 = distance_squared(&p, q);
+                        if d2 < reach2 {
+                            let t = self.weight_of(d2);
+                            w += t;
+                            if over_j && let Some(wj) = weight.get_mut(j as usize) {
+                                *wj += t;
+                            }
+                        }
+                    }
+                }
+            }
+            if over_i && let Some(slot) = weight.get_mut(i as usize) {
+                *slot = w;
+            }
+        }
+        self.weight = weight;
+    }
+
+    /// The live band points closer than `2rₑ` to point `i`, with their
+    /// weight terms, into `neighbours`: what `i`'s removal takes from
+    /// their weights (the same terms, bit for bit, as
+    /// [`Self::pair_weights`] added).
+    fn neighbours_of(&mut self, i: usize, y: usize, width: usize, band_rows: usize) {
+        let mut found = core::mem::take(&mut self.neighbours);
+        found.clear();
+        if let Some(&p) = self.points.get(i) {
+            let reach2 = self.reach * self.reach;
+            self.near(&p, y, width, band_rows, |j| {
+                if j as usize != i
+                    && self.alive.get(j as usize) == Some(&true)
+                    && let Some(q) = self.points.get(j as usize)
+                {
+                    let d2 = distance_squared(&p, q);
+                    if d2 < reach2 {
+                        found.push((j, self.weight_of(d2)));
+                    }
+                }
+            });
+        }
+        self.neighbours = found;
+    }
+
     /// Step 3, [`ExactMethod::Eliminate`]: weighted sample elimination of
     /// the band until every pixel of row `y` is down to `n`: from then on
     /// no point of row `y` can go, so the rest of row `y + 1`'s thinning,
@@ -842,45 +950,35 @@ impl Exact {
         self.weight.resize(total, 0.0);
         self.factor.clear();
         self.factor.resize(total, 1.0);
-        self.link_start.clear();
-        self.links.clear();
-        let reach2 = self.reach * self.reach;
-        let mut entries = core::mem::take(&mut self.heap).into_vec();
+        self.pair_weights(width, band_rows);
+        let mut entries = core::mem::take(&mut self.sorted);
         entries.clear();
+        self.heap.clear();
         for i in 0..total {
-            self.link_start.push(self.links.len());
-            let (Some(&p), Some(true), Some(&b)) = (
+            let (Some(&p), Some(true), Some(&b), Some(&w)) = (
                 self.points.get(i),
-                self.alive.get(i).copied(),
+                self.over.get(i).copied(),
                 self.pixel.get(i),
+                self.weight.get(i),
             ) else {
                 continue;
             };
-            let over = self.count.get(b as usize).is_some_and(|&c| c > self.n);
-            if !over {
-                continue;
-            }
-            let mut w = 0.0;
-            let mut links = core::mem::take(&mut self.links);
-            self.near(&p, y, width, band_rows, |j| {
-                if j as usize != i
-                    && self.alive.get(j as usize) == Some(&true)
-                    && let Some(q) = self.points.get(j as usize)
-                {
-                    let d2 = distance_squared(&p, q);
-                    if d2 < reach2 {
-                        let t = self.weight_of(d2);
-                        w += t;
-                        links.push((j, t));
-                    }
-                }
-            });
-            self.links = links;
+            let mut w = w;
             if p[1] - top < self.reach {
-                w += self
-                    .final_above(window, y, b as usize % width, width)
-                    .map(|q| self.weight_of(distance_squared(&p, q)))
-                    .sum::<f64>();
+                let x = b as usize % width;
+                w += if y > 0 && self.strip_row == Some(y - 1) && window.holds_row(y - 1) {
+                    self.strip
+                        .get(columns_around(x, width))
+                        .unwrap_or(&[])
+                        .iter()
+                        .flatten()
+                        .map(|q| self.weight_of(distance_squared(&p, q)))
+                        .sum::<f64>()
+                } else {
+                    self.final_above(window, y, x, width)
+                        .map(|q| self.weight_of(distance_squared(&p, q)))
+                        .sum::<f64>()
+                };
             }
             let f = self.edge_factor(i);
             if let (Some(slot), Some(g)) = (self.weight.get_mut(i), self.factor.get_mut(i)) {
@@ -890,8 +988,15 @@ impl Exact {
             #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
             entries.push(Entry::new(w * f, i as u32));
         }
-        self.link_start.push(self.links.len());
-        self.heap = BinaryHeap::from(entries);
+        // Largest first. Most entries are popped before row `y` is done
+        // (about 1.1 pops an entry at `n = 4`): sorting them once costs
+        // less than a heap of them all; the heap holds only the weights
+        // lowered since, and each pop takes the larger of the two fronts.
+        // All keys differ (the index is part of them), so the pops come in
+        // the order one heap of everything gave.
+        entries.sort_unstable_by(|a, b| b.cmp(a));
+        self.sorted = entries;
+        let mut next = 0;
         // Pixels of row `y` still over `n`: the loop ends when none is.
         let mut left = self
             .count
@@ -901,7 +1006,17 @@ impl Exact {
             .filter(|&&c| c > self.n)
             .count();
         while left > 0
-            && let Some(entry) = self.heap.pop()
+            && let Some(entry) = match (self.sorted.get(next), self.heap.peek()) {
+                (Some(&e), Some(&h)) if e > h => {
+                    next += 1;
+                    Some(e)
+                }
+                (Some(&e), None) => {
+                    next += 1;
+                    Some(e)
+                }
+                _ => self.heap.pop(),
+            }
         {
             let (w, i) = entry.parts();
             let i = i as usize;
@@ -923,17 +1038,12 @@ impl Exact {
             if (b as usize) < width && self.count.get(b as usize) == Some(&self.n) {
                 left -= 1;
             }
-            let (Some(&a), Some(&z)) = (self.link_start.get(i), self.link_start.get(i + 1)) else {
-                continue;
-            };
-            for k in a..z {
-                let Some(&(j32, t)) = self.links.get(k) else {
-                    continue;
-                };
+            // Its neighbours are looked up again, rather than kept from
+            // the start: about one point in five is removed.
+            self.neighbours_of(i, y, width, band_rows);
+            for &(j32, t) in &self.neighbours {
                 let j = j32 as usize;
-                if self.alive.get(j) == Some(&true)
-                    && let Some(wj) = self.weight.get_mut(j)
-                {
+                if let Some(wj) = self.weight.get_mut(j) {
                     *wj -= t;
                     let wj = *wj;
                     let still_over = self
@@ -1037,6 +1147,27 @@ impl Exact {
                     list.push(p);
                 }
             }
+        }
+        self.strip_row = None;
+        if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
+            // Anything lower lies more than `2rₑ` above every point of the
+            // rows below (which start at `y + 1`, up to rounding: hence
+            // the margin, far above it).
+            #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
+            let low = (y + 1) as f64 - self.reach - 1e-6;
+            self.strip.resize_with(width, Vec::new);
+            for (x, list) in self.strip.iter_mut().enumerate() {
+                list.clear();
+                list.extend(
+                    window
+                        .slot(x, y)
+                        .kept
+                        .iter()
+                        .filter(|q| q[1] >= low)
+                        .copied(),
+                );
+            }
+            self.strip_row = Some(y);
         }
     }
 }
