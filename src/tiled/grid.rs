@@ -41,6 +41,9 @@ pub(crate) struct RollingGrid {
     reach: usize,
     /// The global cell row at array row `reach`.
     first: usize,
+    /// The array index of cell key 0 ([`Self::key`]), wrapping: `reach`
+    /// rows and columns of padding, less the rows slid past.
+    origin: usize,
     /// Cells per axis inside the raster.
     cells_x: usize,
     cells_y: usize,
@@ -113,6 +116,7 @@ impl RollingGrid {
             rows,
             reach,
             first: 0,
+            origin: origin(reach, columns, 0),
             cells_x,
             cells_y,
             inv_side: 1.0 / side,
@@ -134,6 +138,7 @@ impl RollingGrid {
             rows: 0,
             reach: 0,
             first: 0,
+            origin: 0,
             cells_x: 1,
             cells_y: 1,
             inv_side: 1.0,
@@ -191,6 +196,7 @@ impl RollingGrid {
             rest.fill(FAR);
         }
         self.first = row;
+        self.origin = origin(self.reach, self.columns, row);
     }
 
     /// The array index of cell `(cx, cy)` (global), or `usize::MAX` if it
@@ -203,29 +209,50 @@ impl RollingGrid {
         }
     }
 
+    /// The key of `p`'s cell (a point inside the raster): its global cell
+    /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
+    /// index it stays valid as the rows slide, so the sweep keeps it with
+    /// each active point and never locates a parent again: its seed and the
+    /// next pick's prefetch start from it.
+    #[inline(always)]
+    pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
+        let (cx, cy, _) = self.locate(p);
+        self.key_of(cx, cy)
+    }
+
+    /// The key of global cell `(cx, cy)`.
+    #[inline(always)]
+    fn key_of(&self, cx: usize, cy: usize) -> usize {
+        cy.wrapping_mul(self.columns).wrapping_add(cx)
+    }
+
+    /// The array index of the cell with key `key` (wrapping: a cell above
+    /// the array wraps below zero, past the array's end).
+    #[inline(always)]
+    fn at(&self, key: usize) -> usize {
+        key.wrapping_add(self.origin)
+    }
+
     /// The global cell of a point inside the raster, and the quarter of the
     /// cell it lies in.
     #[inline(always)]
     fn locate(&self, p: &[f64; 2]) -> (usize, usize, usize) {
-        let ([cx, cy], part) = self.locate_in(p, parts(2));
-        (cx, cy, part)
-    }
-
-    /// `p`'s cell and which of `parts` slices an axis of it `p` lies in
-    /// (with 1, the prefetch's case, always part 0).
-    #[inline(always)]
-    fn locate_in(&self, p: &[f64; 2], parts: usize) -> ([usize; 2], usize) {
         let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
-        locate(p, &[0.0; 2], &[self.inv_side; 2], &last, parts)
+        let ([cx, cy], part) = locate(p, &[0.0; 2], &[self.inv_side; 2], &last, parts(2));
+        (cx, cy, part)
     }
 
     /// A stored point closer than `r` to `p` (inside the raster, in a row
     /// the window holds), if any: the nearest cells first, eight at a time.
+    /// Also `p`'s cell key ([`Self::key`]), found on the way.
     #[inline(always)]
-    pub(crate) fn conflict(&self, p: &[f64; 2]) -> Option<[f64; 2]> {
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         let (cx, cy, part) = self.locate(p);
-        let base = self.index(cx, cy);
-        let stencil = self.parts.get(part)?;
+        let key = self.key_of(cx, cy);
+        let base = self.at(key);
+        let Some(stencil) = self.parts.get(part) else {
+            return (key, None);
+        };
         for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
             let mut hit = false;
             for &off in chunk {
@@ -236,25 +263,26 @@ impl RollingGrid {
                 hit |= distance_squared(p, q) < self.radius_squared;
             }
             if hit {
-                return chunk
+                let found = chunk
                     .iter()
                     .filter_map(|&off| self.cells.get(base.wrapping_add_signed(off)))
                     .find(|q| distance_squared(p, q) < self.radius_squared)
                     .copied();
+                return (key, found);
             }
         }
-        None
+        (key, None)
     }
 
     /// Hands the points of the cells around `p` (up to `limit`) to `take`:
     /// its nearest neighbours, which turn away most of its candidates. Two
     /// passes, as the batch grid's seed: the occupied cells' points in
     /// address order without a branch (whether a cell is empty is a coin
-    /// toss the predictor loses), then those points.
+    /// toss the predictor loses), then those points. `key` is `p`'s cell's
+    /// ([`Self::key`]).
     #[inline(always)]
-    pub(crate) fn seed(&self, p: &[f64; 2], limit: usize, mut take: impl FnMut(&[f64; 2])) {
-        let (cx, cy, _) = self.locate(p);
-        let base = self.index(cx, cy);
+    pub(crate) fn seed(&self, key: usize, limit: usize, mut take: impl FnMut(&[f64; 2])) {
+        let base = self.at(key);
         let mut found = [FAR; SEED_MAX];
         let mut n = 0;
         for &off in &self.seed_offsets {
@@ -279,14 +307,14 @@ impl RollingGrid {
     /// its next parent anywhere along the front, whose width can put the
     /// window's live rows past the nearest caches; its candidates, up to
     /// `2r` away, search cells up to `2r` plus the reach from it, of which
-    /// the inner block (`r` plus the reach) is fetched.
+    /// the inner block (`r` plus the reach) is fetched. `key` is the
+    /// pick's cell's ([`Self::key`]).
     #[inline(always)]
-    pub(crate) fn prefetch(&self, p: &[f64; 2]) {
+    pub(crate) fn prefetch(&self, key: usize) {
         if self.block.rows == 0 {
             return;
         }
-        let ([cx, cy], _) = self.locate_in(p, 1);
-        let mut row = self.index(cx, cy).wrapping_add_signed(self.block.first);
+        let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
         let ask = |at: usize| crate::prefetch::prefetch(cells, at);
         match *self.block.lines.as_slice() {
@@ -348,12 +376,12 @@ impl RollingGrid {
         }
     }
 
-    /// Stores `p` in its cell; `false` (storing nothing) if the cell is
-    /// taken, which only rounding can cause, or lies outside the array.
+    /// Stores `p` in its cell, whose key ([`Self::key`]) is `key`; `false`
+    /// (storing nothing) if the cell is taken, which only rounding can
+    /// cause, or lies outside the array.
     #[inline(always)]
-    pub(crate) fn insert(&mut self, p: [f64; 2]) -> bool {
-        let (cx, cy, _) = self.locate(&p);
-        let index = self.index(cx, cy);
+    pub(crate) fn insert(&mut self, p: [f64; 2], key: usize) -> bool {
+        let index = self.at(key);
         match self.cells.get_mut(index) {
             Some(cell) if cell[0] == f64::INFINITY => {
                 *cell = p;
@@ -362,6 +390,16 @@ impl RollingGrid {
             _ => false,
         }
     }
+}
+
+/// The array index of cell key 0 when global cell row `first` sits at
+/// array row `reach`: `reach` padding columns and `reach - first` rows in,
+/// wrapping.
+fn origin(reach: usize, columns: usize, first: usize) -> usize {
+    reach
+        .wrapping_sub(first)
+        .wrapping_mul(columns)
+        .wrapping_add(reach)
 }
 
 /// The cache lines (64 bytes, 4 cells) covering the square of cells a

@@ -45,7 +45,7 @@ use crate::vector::add;
 use core::iter::FusedIterator;
 pub use exact::ExactMethod;
 use exact::{DEFAULT_OVERSAMPLE, Exact};
-use queue::BandQueue;
+use queue::{Active, BandQueue};
 use rand::Rng;
 use window::{Window, WindowPlan};
 
@@ -466,7 +466,7 @@ pub struct Pixels<R> {
     rows_per_round: usize,
     /// Per block, the points to work in it before the current key limit,
     /// with their buckets.
-    blocks: Vec<Vec<([f64; 2], u64)>>,
+    blocks: Vec<Vec<(Active, u64)>>,
     /// The blocks in the order they are worked, and which are still to be.
     order: Vec<usize>,
     pending: Vec<bool>,
@@ -600,7 +600,7 @@ impl<R: Rng> Pixels<R> {
             let window = &self.window;
             let Some((place, parent)) = self
                 .queue
-                .pick(limit, &mut self.rng, |p| window.prefetch(p))
+                .pick(limit, &mut self.rng, |p| window.prefetch(p.cell))
             else {
                 break;
             };
@@ -643,7 +643,7 @@ impl<R: Rng> Pixels<R> {
         let blocks = &mut self.blocks;
         self.queue.drain_below(limit, |p, bucket| {
             any = true;
-            if let Some(list) = blocks.get_mut(block_of(&p)) {
+            if let Some(list) = blocks.get_mut(block_of(&p.point)) {
                 list.push((p, bucket));
             }
         });
@@ -681,15 +681,15 @@ impl<R: Rng> Pixels<R> {
                 let window = &self.window;
                 let Some((place, parent)) = self
                     .scratch
-                    .pick(limit, &mut self.rng, |p| window.prefetch(p))
+                    .pick(limit, &mut self.rng, |p| window.prefetch(p.cell))
                 else {
                     break;
                 };
                 match self.spawn(&parent, (0, y), false) {
                     Some(child) => {
-                        let key = child[1] + self.jitter * unit(&mut self.rng);
+                        let key = child.point[1] + self.jitter * unit(&mut self.rng);
                         let bucket = self.queue.bucket(key);
-                        let at = block_of(&child);
+                        let at = block_of(&child.point);
                         if !self.queue.starts_below(bucket, limit) {
                             self.queue.push_in(child, bucket);
                         } else if at == b {
@@ -721,8 +721,8 @@ impl<R: Rng> Pixels<R> {
         seeded
     }
 
-    fn push(&mut self, point: [f64; 2]) {
-        let key = point[1] + self.jitter * unit(&mut self.rng);
+    fn push(&mut self, point: Active) {
+        let key = point.point[1] + self.jitter * unit(&mut self.rng);
         self.queue.push(point, key);
     }
 
@@ -735,8 +735,12 @@ impl<R: Rng> Pixels<R> {
                 return;
             }
             let i = below(&mut self.rng, len);
-            let Some(&parent) = self.window.slot(x, y).active.get(i) else {
+            let Some(&point) = self.window.slot(x, y).active.get(i) else {
                 return;
+            };
+            let parent = Active {
+                point,
+                cell: self.window.key(&point),
             };
             if self.spawn(&parent, (x, y), true).is_none()
                 && let Some(slot) = self.window.slot_mut(x, y)
@@ -747,7 +751,7 @@ impl<R: Rng> Pixels<R> {
     }
 
     /// Up to `k` candidates around `parent`; stores and returns the first
-    /// valid one. Candidates in pixels already emitted (before `current` in
+    /// valid one, with its cell's key. Candidates in pixels already emitted (before `current` in
     /// scan order), outside the raster or below the window are refused;
     /// with `only_current`, so is any outside the current pixel.
     ///
@@ -758,10 +762,11 @@ impl<R: Rng> Pixels<R> {
     #[inline(always)]
     fn spawn(
         &mut self,
-        parent: &[f64; 2],
+        &Active { point, cell }: &Active,
         current: (usize, usize),
         only_current: bool,
-    ) -> Option<[f64; 2]> {
+    ) -> Option<Active> {
+        let parent = &point;
         // The rectangle candidates may land in: the current pixel, or the
         // rows from the current one to the window's last (pixels before
         // `current` in the current row are never refused by it: the sweep
@@ -789,7 +794,7 @@ impl<R: Rng> Pixels<R> {
         let small = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
         let near_origin = ahead && small;
         let mut cache = ConflictCache::<2, 8>::new(*parent, radius);
-        self.window.seed(parent, 8, |q| cache.push(q));
+        self.window.seed(cell, 8, |q| cache.push(q));
         // Far from the rectangle's sides (the usual case), no candidate can
         // leave it: skip the per-attempt test, as the batch sampler does
         // far from the box's faces. 2-D candidates lie within
@@ -820,7 +825,8 @@ impl<R: Rng> Pixels<R> {
             if blocked {
                 continue;
             }
-            if let Some(q) = self.window.conflict(&c) {
+            let (key, hit) = self.window.conflict(&c);
+            if let Some(q) = hit {
                 cache.push(&q);
                 continue;
             }
@@ -833,8 +839,11 @@ impl<R: Rng> Pixels<R> {
             )]
             let pixel = (c[0] as u32 as usize, c[1] as u32 as usize);
             let list = only_current || self.exact.is_some();
-            if self.window.insert(c, pixel, (list, only_current)) {
-                return Some(c);
+            if self.window.insert((c, key), pixel, (list, only_current)) {
+                return Some(Active {
+                    point: c,
+                    cell: key,
+                });
             }
         }
         None
@@ -847,16 +856,23 @@ impl<R: Rng> Pixels<R> {
         let (fx, fy) = (x as f64, y as f64);
         for _ in 0..self.attempts {
             let p = [fx + unit(&mut self.rng), fy + unit(&mut self.rng)];
-            if self.pixel_of(&p) != Some((x, y)) || self.window.conflict(&p).is_some() {
+            if self.pixel_of(&p) != Some((x, y)) {
+                continue;
+            }
+            let (key, hit) = self.window.conflict(&p);
+            if hit.is_some() {
                 continue;
             }
             let paper = self.scheme == Scheme::Paper;
             if self
                 .window
-                .insert(p, (x, y), (paper || self.exact.is_some(), paper))
+                .insert((p, key), (x, y), (paper || self.exact.is_some(), paper))
             {
                 if self.scheme != Scheme::Paper {
-                    self.push(p);
+                    self.push(Active {
+                        point: p,
+                        cell: key,
+                    });
                 }
                 return true;
             }

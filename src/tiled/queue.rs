@@ -19,17 +19,25 @@ use std::collections::VecDeque;
 /// Bucket height, in radii (`J = 4r` spans 16 buckets).
 pub(crate) const BUCKET: f64 = 0.25;
 
+/// An active point and the key of its grid cell (`RollingGrid::key`),
+/// kept with it so that a pick's seed and prefetch need not locate it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Active {
+    pub(crate) point: [f64; 2],
+    pub(crate) cell: usize,
+}
+
 #[derive(Debug)]
 pub(crate) struct BandQueue {
     /// Bucket `i` holds the points whose key lies in
     /// `[(base + i)·h, (base + i + 1)·h)`.
-    buckets: VecDeque<Vec<[f64; 2]>>,
+    buckets: VecDeque<Vec<Active>>,
     /// The bucket number of `buckets[0]`.
     base: u64,
     height: f64,
     inv_height: f64,
     /// Emptied buckets, kept for their allocations.
-    spare: Vec<Vec<[f64; 2]>>,
+    spare: Vec<Vec<Active>>,
     /// The next pick's bucket and index, drawn ahead.
     next: Option<(u64, usize)>,
 }
@@ -49,7 +57,7 @@ impl BandQueue {
     }
 
     /// Queues `point` under `key` (non-negative).
-    pub(crate) fn push(&mut self, point: [f64; 2], key: f64) {
+    pub(crate) fn push(&mut self, point: Active, key: f64) {
         self.push_in(point, self.bucket(key));
     }
 
@@ -96,7 +104,7 @@ impl BandQueue {
 
     /// Takes out every point of the buckets that start below `limit`,
     /// lowest bucket first, handing each to `take` with its bucket.
-    pub(crate) fn drain_below(&mut self, limit: f64, mut take: impl FnMut([f64; 2], u64)) {
+    pub(crate) fn drain_below(&mut self, limit: f64, mut take: impl FnMut(Active, u64)) {
         while self.buckets.front().is_some() && self.starts_below(self.base, limit) {
             if let Some(mut list) = self.buckets.pop_front() {
                 for &p in &list {
@@ -110,7 +118,7 @@ impl BandQueue {
     }
 
     /// Queues `point` in bucket `bucket`.
-    pub(crate) fn push_in(&mut self, point: [f64; 2], bucket: u64) {
+    pub(crate) fn push_in(&mut self, point: Active, bucket: u64) {
         if self.buckets.is_empty() {
             self.base = bucket;
         }
@@ -150,8 +158,8 @@ impl BandQueue {
         &mut self,
         limit: f64,
         rng: &mut R,
-        ahead: impl FnOnce(&[f64; 2]),
-    ) -> Option<(Place, [f64; 2])> {
+        ahead: impl FnOnce(&Active),
+    ) -> Option<(Place, Active)> {
         loop {
             let front = self.buckets.front()?;
             if front.is_empty() {
