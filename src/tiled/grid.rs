@@ -22,6 +22,10 @@ use crate::vector::distance_squared;
 /// emptiness.
 pub(crate) const FAR: [f64; 2] = [f64::INFINITY; 2];
 
+/// The bits of an empty cell's first coordinate (no point has it: points
+/// are finite).
+const FAR_X_BITS: u64 = f64::INFINITY.to_bits();
+
 /// How many occupied cells [`RollingGrid::seed`] gathers at most.
 const SEED_MAX: usize = 16;
 
@@ -51,9 +55,11 @@ pub(crate) struct RollingGrid {
     radius_squared: f64,
     /// Stencils of the four quarters of a cell.
     parts: Vec<Stencil>,
-    /// The whole cell's stencil without the centre, in address order: the
-    /// seed's cells.
-    seed_offsets: Vec<isize>,
+    /// The whole cell's stencil without the centre, in address order, as
+    /// runs of adjacent cells `(first offset, length)`: the seed's cells,
+    /// read a run (a slice) at a time, with one bounds check a run instead
+    /// of a cell.
+    seed_runs: Vec<(isize, usize)>,
     /// The cache lines of the block around a pick's parent that its
     /// candidates search first (`r` from the parent's cell, plus the
     /// reach): what [`Self::prefetch`] asks for.
@@ -99,6 +105,7 @@ impl RollingGrid {
         let mut seed_offsets: Vec<isize> =
             full.offsets.iter().copied().filter(|&o| o != 0).collect();
         seed_offsets.sort_unstable();
+        let seed_runs = runs(&seed_offsets);
         // Within the L2 cache, a pick's cells are near at hand already and
         // their prefetch only costs instructions.
         let block = if prefetch {
@@ -122,7 +129,7 @@ impl RollingGrid {
             inv_side: 1.0 / side,
             radius_squared: radius * radius,
             parts,
-            seed_offsets,
+            seed_runs,
             block,
         })
     }
@@ -144,7 +151,7 @@ impl RollingGrid {
             inv_side: 1.0,
             radius_squared: 0.0,
             parts: Vec::new(),
-            seed_offsets: Vec::new(),
+            seed_runs: Vec::new(),
             block: Block::default(),
         }
     }
@@ -285,18 +292,22 @@ impl RollingGrid {
         let base = self.at(key);
         let mut found = [FAR; SEED_MAX];
         let mut n = 0;
-        for &off in &self.seed_offsets {
-            let q = self
-                .cells
-                .get(base.wrapping_add_signed(off))
-                .copied()
-                .unwrap_or(FAR);
-            // Past SEED_MAX occupied cells, later ones overwrite earlier
-            // ones: any subset suits the cache.
-            if let Some(slot) = found.get_mut(n % SEED_MAX) {
-                *slot = q;
+        for &(first, len) in &self.seed_runs {
+            let start = base.wrapping_add_signed(first);
+            // Always inside: the padding is as wide as the reach.
+            let Some(run) = self.cells.get(start..start.saturating_add(len)) else {
+                continue;
+            };
+            for q in run {
+                // Past SEED_MAX occupied cells, later ones overwrite earlier
+                // ones: any subset suits the cache.
+                if let Some(slot) = found.get_mut(n % SEED_MAX) {
+                    *slot = *q;
+                }
+                // Empty is infinity, compared by its bits: one integer
+                // compare, where `!=` on floats also tests for NaN.
+                n += usize::from(q[0].to_bits() != FAR_X_BITS);
             }
-            n += usize::from(q[0] != f64::INFINITY);
         }
         for q in found.iter().take(n.min(limit)) {
             take(q);
@@ -392,6 +403,24 @@ impl RollingGrid {
     }
 }
 
+/// Sorted `offsets` as runs of consecutive values, `(first, length)`.
+fn runs(offsets: &[isize]) -> Vec<(isize, usize)> {
+    let mut runs: Vec<(isize, usize)> = Vec::new();
+    for &off in offsets {
+        match runs.last_mut() {
+            Some((first, len))
+                if first
+                    .checked_add_unsigned(*len)
+                    .is_some_and(|end| end == off) =>
+            {
+                *len += 1;
+            }
+            _ => runs.push((off, 1)),
+        }
+    }
+    runs
+}
+
 /// The array index of cell key 0 when global cell row `first` sits at
 /// array row `reach`: `reach` padding columns and `reach - first` rows in,
 /// wrapping.
@@ -431,5 +460,45 @@ fn block(radius: f64, side: f64, reach: usize, columns: usize) -> Block {
         rows: half.saturating_mul(2).saturating_add(1),
         first: -half_i.saturating_mul(columns_i),
         lines,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_split_sorted_offsets_where_they_jump() {
+        assert_eq!(
+            runs(&[-9, -8, -7, -1, 1, 2, 3, 40]),
+            [(-9, 3), (-1, 1), (1, 3), (40, 1)]
+        );
+        assert_eq!(runs(&[]), []);
+    }
+
+    /// The seed reads its cells a run at a time: the same cells, in the
+    /// same (address) order, as offset by offset.
+    #[test]
+    fn seed_runs_cover_the_seed_stencil_in_address_order() {
+        let side = 0.39 * core::f64::consts::FRAC_1_SQRT_2;
+        let grid = RollingGrid::new((40, 40), 20, side, (0.39, 2, 1e-9), false).unwrap();
+        let cells: Vec<isize> = grid
+            .seed_runs
+            .iter()
+            .flat_map(|&(first, len)| (0..len).map(move |k| first + k as isize))
+            .collect();
+        let full = {
+            let shape = StencilShape {
+                reach: [2; 2],
+                side: [side; 2],
+                eta: 1e-9,
+                radius: 0.39,
+            };
+            Stencil::new(&shape, &[1, grid.columns], &[0, 0], 1).unwrap()
+        };
+        let mut expected: Vec<isize> = full.offsets.iter().copied().filter(|&o| o != 0).collect();
+        expected.sort_unstable();
+        assert!(expected.len() > 8, "{expected:?}");
+        assert_eq!(cells, expected);
     }
 }
