@@ -218,9 +218,9 @@ impl RollingGrid {
 
     /// The key of `p`'s cell (a point inside the raster): its global cell
     /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
-    /// index it stays valid as the rows slide, so the sweep keeps it with
-    /// each active point and never locates a parent again: its seed and the
-    /// next pick's prefetch start from it.
+    /// index it stays valid as the rows slide: the candidate's search finds
+    /// it for the insert, and the next pick's prefetch for that pick's
+    /// seed.
     #[inline(always)]
     pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
         let (cx, cy, _) = self.locate(p);
@@ -318,12 +318,13 @@ impl RollingGrid {
     /// its next parent anywhere along the front, whose width can put the
     /// window's live rows past the nearest caches; its candidates, up to
     /// `2r` away, search cells up to `2r` plus the reach from it, of which
-    /// the inner block (`r` plus the reach) is fetched. `key` is the
-    /// pick's cell's ([`Self::key`]).
+    /// the inner block (`r` plus the reach) is fetched. Returns `p`'s cell
+    /// key ([`Self::key`]), prefetching or not.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, key: usize) {
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        let key = self.key(p);
         if self.block.rows == 0 {
-            return;
+            return key;
         }
         let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
@@ -347,6 +348,7 @@ impl RollingGrid {
                 }
             }
         }
+        key
     }
 
     /// Hands the cells of each cell row that covers pixel row `y` to

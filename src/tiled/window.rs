@@ -404,10 +404,11 @@ impl Window {
         self.grid.key(p)
     }
 
-    /// Asks the cache for the grid cells around the cell with key `key`.
+    /// Asks the cache for the grid cells around `p` (wide windows); `p`'s
+    /// cell key.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, key: usize) {
-        self.grid.prefetch(key);
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        self.grid.prefetch(p)
     }
 
     /// Hands up to `limit` stored points around the cell with key `key`
