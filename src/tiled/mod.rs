@@ -750,9 +750,10 @@ impl<R: Rng> Pixels<R> {
     }
 
     /// Up to `k` candidates around `parent`, whose cell key is `cell`;
-    /// stores and returns the first valid one. Candidates in pixels already emitted (before `current` in
-    /// scan order), outside the raster or below the window are refused;
-    /// with `only_current`, so is any outside the current pixel.
+    /// stores and returns the first valid one. Candidates in pixels
+    /// already emitted (before `current` in scan order), outside the
+    /// raster or below the window are refused; with `only_current`, so is
+    /// any outside the current pixel.
     ///
     /// The batch sampler's loop (`sampler.rs`, `grow_cached`): offsets drawn
     /// ahead, and a [`ConflictCache`] of the parent's neighbours and of the
