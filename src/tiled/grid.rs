@@ -22,6 +22,10 @@ use crate::vector::distance_squared;
 /// emptiness.
 pub(crate) const FAR: [f64; 2] = [f64::INFINITY; 2];
 
+/// The bits of an empty cell's first coordinate (no point has it: points
+/// are finite).
+const FAR_X_BITS: u64 = f64::INFINITY.to_bits();
+
 /// How many occupied cells [`RollingGrid::seed`] gathers at most.
 const SEED_MAX: usize = 16;
 
@@ -41,6 +45,9 @@ pub(crate) struct RollingGrid {
     reach: usize,
     /// The global cell row at array row `reach`.
     first: usize,
+    /// The array index of cell key 0 ([`Self::key`]), wrapping: `reach`
+    /// rows and columns of padding, less the rows slid past.
+    origin: usize,
     /// Cells per axis inside the raster.
     cells_x: usize,
     cells_y: usize,
@@ -48,9 +55,11 @@ pub(crate) struct RollingGrid {
     radius_squared: f64,
     /// Stencils of the four quarters of a cell.
     parts: Vec<Stencil>,
-    /// The whole cell's stencil without the centre, in address order: the
-    /// seed's cells.
-    seed_offsets: Vec<isize>,
+    /// The whole cell's stencil without the centre, in address order, as
+    /// runs of adjacent cells `(first offset, length)`: the seed's cells,
+    /// read a run (a slice) at a time, with one bounds check a run instead
+    /// of a cell.
+    seed_runs: Vec<(isize, usize)>,
     /// The cache lines of the block around a pick's parent that its
     /// candidates search first (`r` from the parent's cell, plus the
     /// reach): what [`Self::prefetch`] asks for.
@@ -96,6 +105,7 @@ impl RollingGrid {
         let mut seed_offsets: Vec<isize> =
             full.offsets.iter().copied().filter(|&o| o != 0).collect();
         seed_offsets.sort_unstable();
+        let seed_runs = runs(&seed_offsets);
         // Within the L2 cache, a pick's cells are near at hand already and
         // their prefetch only costs instructions.
         let block = if prefetch {
@@ -113,12 +123,13 @@ impl RollingGrid {
             rows,
             reach,
             first: 0,
+            origin: origin(reach, columns, 0),
             cells_x,
             cells_y,
             inv_side: 1.0 / side,
             radius_squared: radius * radius,
             parts,
-            seed_offsets,
+            seed_runs,
             block,
         })
     }
@@ -134,12 +145,13 @@ impl RollingGrid {
             rows: 0,
             reach: 0,
             first: 0,
+            origin: 0,
             cells_x: 1,
             cells_y: 1,
             inv_side: 1.0,
             radius_squared: 0.0,
             parts: Vec::new(),
-            seed_offsets: Vec::new(),
+            seed_runs: Vec::new(),
             block: Block::default(),
         }
     }
@@ -191,6 +203,7 @@ impl RollingGrid {
             rest.fill(FAR);
         }
         self.first = row;
+        self.origin = origin(self.reach, self.columns, row);
     }
 
     /// The array index of cell `(cx, cy)` (global), or `usize::MAX` if it
@@ -203,29 +216,50 @@ impl RollingGrid {
         }
     }
 
+    /// The key of `p`'s cell (a point inside the raster): its global cell
+    /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
+    /// index it stays valid as the rows slide: the candidate's search finds
+    /// it for the insert, and the next pick's prefetch for that pick's
+    /// seed.
+    #[inline(always)]
+    pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
+        let (cx, cy, _) = self.locate(p);
+        self.key_of(cx, cy)
+    }
+
+    /// The key of global cell `(cx, cy)`.
+    #[inline(always)]
+    fn key_of(&self, cx: usize, cy: usize) -> usize {
+        cy.wrapping_mul(self.columns).wrapping_add(cx)
+    }
+
+    /// The array index of the cell with key `key` (wrapping: a cell above
+    /// the array wraps below zero, past the array's end).
+    #[inline(always)]
+    fn at(&self, key: usize) -> usize {
+        key.wrapping_add(self.origin)
+    }
+
     /// The global cell of a point inside the raster, and the quarter of the
     /// cell it lies in.
     #[inline(always)]
     fn locate(&self, p: &[f64; 2]) -> (usize, usize, usize) {
-        let ([cx, cy], part) = self.locate_in(p, parts(2));
-        (cx, cy, part)
-    }
-
-    /// `p`'s cell and which of `parts` slices an axis of it `p` lies in
-    /// (with 1, the prefetch's case, always part 0).
-    #[inline(always)]
-    fn locate_in(&self, p: &[f64; 2], parts: usize) -> ([usize; 2], usize) {
         let last = [self.cells_x, self.cells_y].map(|m| m.saturating_sub(1));
-        locate(p, &[0.0; 2], &[self.inv_side; 2], &last, parts)
+        let ([cx, cy], part) = locate(p, &[0.0; 2], &[self.inv_side; 2], &last, parts(2));
+        (cx, cy, part)
     }
 
     /// A stored point closer than `r` to `p` (inside the raster, in a row
     /// the window holds), if any: the nearest cells first, eight at a time.
+    /// Also `p`'s cell key ([`Self::key`]), found on the way.
     #[inline(always)]
-    pub(crate) fn conflict(&self, p: &[f64; 2]) -> Option<[f64; 2]> {
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         let (cx, cy, part) = self.locate(p);
-        let base = self.index(cx, cy);
-        let stencil = self.parts.get(part)?;
+        let key = self.key_of(cx, cy);
+        let base = self.at(key);
+        let Some(stencil) = self.parts.get(part) else {
+            return (key, None);
+        };
         for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
             let mut hit = false;
             for &off in chunk {
@@ -236,39 +270,44 @@ impl RollingGrid {
                 hit |= distance_squared(p, q) < self.radius_squared;
             }
             if hit {
-                return chunk
+                let found = chunk
                     .iter()
                     .filter_map(|&off| self.cells.get(base.wrapping_add_signed(off)))
                     .find(|q| distance_squared(p, q) < self.radius_squared)
                     .copied();
+                return (key, found);
             }
         }
-        None
+        (key, None)
     }
 
     /// Hands the points of the cells around `p` (up to `limit`) to `take`:
     /// its nearest neighbours, which turn away most of its candidates. Two
     /// passes, as the batch grid's seed: the occupied cells' points in
     /// address order without a branch (whether a cell is empty is a coin
-    /// toss the predictor loses), then those points.
+    /// toss the predictor loses), then those points. `key` is `p`'s cell's
+    /// ([`Self::key`]).
     #[inline(always)]
-    pub(crate) fn seed(&self, p: &[f64; 2], limit: usize, mut take: impl FnMut(&[f64; 2])) {
-        let (cx, cy, _) = self.locate(p);
-        let base = self.index(cx, cy);
+    pub(crate) fn seed(&self, key: usize, limit: usize, mut take: impl FnMut(&[f64; 2])) {
+        let base = self.at(key);
         let mut found = [FAR; SEED_MAX];
         let mut n = 0;
-        for &off in &self.seed_offsets {
-            let q = self
-                .cells
-                .get(base.wrapping_add_signed(off))
-                .copied()
-                .unwrap_or(FAR);
-            // Past SEED_MAX occupied cells, later ones overwrite earlier
-            // ones: any subset suits the cache.
-            if let Some(slot) = found.get_mut(n % SEED_MAX) {
-                *slot = q;
+        for &(first, len) in &self.seed_runs {
+            let start = base.wrapping_add_signed(first);
+            // Always inside: the padding is as wide as the reach.
+            let Some(run) = self.cells.get(start..start.saturating_add(len)) else {
+                continue;
+            };
+            for q in run {
+                // Past SEED_MAX occupied cells, later ones overwrite earlier
+                // ones: any subset suits the cache.
+                if let Some(slot) = found.get_mut(n % SEED_MAX) {
+                    *slot = *q;
+                }
+                // Empty is infinity, compared by its bits: one integer
+                // compare, where `!=` on floats also tests for NaN.
+                n += usize::from(q[0].to_bits() != FAR_X_BITS);
             }
-            n += usize::from(q[0] != f64::INFINITY);
         }
         for q in found.iter().take(n.min(limit)) {
             take(q);
@@ -279,14 +318,15 @@ impl RollingGrid {
     /// its next parent anywhere along the front, whose width can put the
     /// window's live rows past the nearest caches; its candidates, up to
     /// `2r` away, search cells up to `2r` plus the reach from it, of which
-    /// the inner block (`r` plus the reach) is fetched.
+    /// the inner block (`r` plus the reach) is fetched. Returns `p`'s cell
+    /// key ([`Self::key`]), prefetching or not.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, p: &[f64; 2]) {
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        let key = self.key(p);
         if self.block.rows == 0 {
-            return;
+            return key;
         }
-        let ([cx, cy], _) = self.locate_in(p, 1);
-        let mut row = self.index(cx, cy).wrapping_add_signed(self.block.first);
+        let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
         let ask = |at: usize| crate::prefetch::prefetch(cells, at);
         match *self.block.lines.as_slice() {
@@ -308,6 +348,7 @@ impl RollingGrid {
                 }
             }
         }
+        key
     }
 
     /// Hands the cells of each cell row that covers pixel row `y` to
@@ -348,12 +389,12 @@ impl RollingGrid {
         }
     }
 
-    /// Stores `p` in its cell; `false` (storing nothing) if the cell is
-    /// taken, which only rounding can cause, or lies outside the array.
+    /// Stores `p` in its cell, whose key ([`Self::key`]) is `key`; `false`
+    /// (storing nothing) if the cell is taken, which only rounding can
+    /// cause, or lies outside the array.
     #[inline(always)]
-    pub(crate) fn insert(&mut self, p: [f64; 2]) -> bool {
-        let (cx, cy, _) = self.locate(&p);
-        let index = self.index(cx, cy);
+    pub(crate) fn insert(&mut self, p: [f64; 2], key: usize) -> bool {
+        let index = self.at(key);
         match self.cells.get_mut(index) {
             Some(cell) if cell[0] == f64::INFINITY => {
                 *cell = p;
@@ -362,6 +403,34 @@ impl RollingGrid {
             _ => false,
         }
     }
+}
+
+/// Sorted `offsets` as runs of consecutive values, `(first, length)`.
+fn runs(offsets: &[isize]) -> Vec<(isize, usize)> {
+    let mut runs: Vec<(isize, usize)> = Vec::new();
+    for &off in offsets {
+        match runs.last_mut() {
+            Some((first, len))
+                if first
+                    .checked_add_unsigned(*len)
+                    .is_some_and(|end| end == off) =>
+            {
+                *len += 1;
+            }
+            _ => runs.push((off, 1)),
+        }
+    }
+    runs
+}
+
+/// The array index of cell key 0 when global cell row `first` sits at
+/// array row `reach`: `reach` padding columns and `reach - first` rows in,
+/// wrapping.
+fn origin(reach: usize, columns: usize, first: usize) -> usize {
+    reach
+        .wrapping_sub(first)
+        .wrapping_mul(columns)
+        .wrapping_add(reach)
 }
 
 /// The cache lines (64 bytes, 4 cells) covering the square of cells a
@@ -393,5 +462,45 @@ fn block(radius: f64, side: f64, reach: usize, columns: usize) -> Block {
         rows: half.saturating_mul(2).saturating_add(1),
         first: -half_i.saturating_mul(columns_i),
         lines,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_split_sorted_offsets_where_they_jump() {
+        assert_eq!(
+            runs(&[-9, -8, -7, -1, 1, 2, 3, 40]),
+            [(-9, 3), (-1, 1), (1, 3), (40, 1)]
+        );
+        assert_eq!(runs(&[]), []);
+    }
+
+    /// The seed reads its cells a run at a time: the same cells, in the
+    /// same (address) order, as offset by offset.
+    #[test]
+    fn seed_runs_cover_the_seed_stencil_in_address_order() {
+        let side = 0.39 * core::f64::consts::FRAC_1_SQRT_2;
+        let grid = RollingGrid::new((40, 40), 20, side, (0.39, 2, 1e-9), false).unwrap();
+        let cells: Vec<isize> = grid
+            .seed_runs
+            .iter()
+            .flat_map(|&(first, len)| (0..len).map(move |k| first + k as isize))
+            .collect();
+        let full = {
+            let shape = StencilShape {
+                reach: [2; 2],
+                side: [side; 2],
+                eta: 1e-9,
+                radius: 0.39,
+            };
+            Stencil::new(&shape, &[1, grid.columns], &[0, 0], 1).unwrap()
+        };
+        let mut expected: Vec<isize> = full.offsets.iter().copied().filter(|&o| o != 0).collect();
+        expected.sort_unstable();
+        assert!(expected.len() > 8, "{expected:?}");
+        assert_eq!(cells, expected);
     }
 }

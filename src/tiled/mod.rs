@@ -598,13 +598,14 @@ impl<R: Rng> Pixels<R> {
         // it throws its candidates; it stays active until it fails.
         loop {
             let window = &self.window;
-            let Some((place, parent)) = self
+            let Some((place, parent, cell)) = self
                 .queue
                 .pick(limit, &mut self.rng, |p| window.prefetch(p))
             else {
                 break;
             };
-            match self.spawn(&parent, (0, y), false) {
+            let cell = cell.unwrap_or_else(|| window.key(&parent));
+            match self.spawn((&parent, cell), (0, y), false) {
                 Some(child) => self.push(child),
                 None => self.queue.retire(place),
             }
@@ -679,13 +680,14 @@ impl<R: Rng> Pixels<R> {
             // fails.
             loop {
                 let window = &self.window;
-                let Some((place, parent)) = self
+                let Some((place, parent, cell)) = self
                     .scratch
                     .pick(limit, &mut self.rng, |p| window.prefetch(p))
                 else {
                     break;
                 };
-                match self.spawn(&parent, (0, y), false) {
+                let cell = cell.unwrap_or_else(|| window.key(&parent));
+                match self.spawn((&parent, cell), (0, y), false) {
                     Some(child) => {
                         let key = child[1] + self.jitter * unit(&mut self.rng);
                         let bucket = self.queue.bucket(key);
@@ -738,7 +740,8 @@ impl<R: Rng> Pixels<R> {
             let Some(&parent) = self.window.slot(x, y).active.get(i) else {
                 return;
             };
-            if self.spawn(&parent, (x, y), true).is_none()
+            let cell = self.window.key(&parent);
+            if self.spawn((&parent, cell), (x, y), true).is_none()
                 && let Some(slot) = self.window.slot_mut(x, y)
             {
                 slot.active.swap_remove(i);
@@ -746,10 +749,11 @@ impl<R: Rng> Pixels<R> {
         }
     }
 
-    /// Up to `k` candidates around `parent`; stores and returns the first
-    /// valid one. Candidates in pixels already emitted (before `current` in
-    /// scan order), outside the raster or below the window are refused;
-    /// with `only_current`, so is any outside the current pixel.
+    /// Up to `k` candidates around `parent`, whose cell key is `cell`;
+    /// stores and returns the first valid one. Candidates in pixels
+    /// already emitted (before `current` in scan order), outside the
+    /// raster or below the window are refused; with `only_current`, so is
+    /// any outside the current pixel.
     ///
     /// The batch sampler's loop (`sampler.rs`, `grow_cached`): offsets drawn
     /// ahead, and a [`ConflictCache`] of the parent's neighbours and of the
@@ -758,7 +762,7 @@ impl<R: Rng> Pixels<R> {
     #[inline(always)]
     fn spawn(
         &mut self,
-        parent: &[f64; 2],
+        (parent, cell): (&[f64; 2], usize),
         current: (usize, usize),
         only_current: bool,
     ) -> Option<[f64; 2]> {
@@ -789,7 +793,7 @@ impl<R: Rng> Pixels<R> {
         let small = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
         let near_origin = ahead && small;
         let mut cache = ConflictCache::<2, 8>::new(*parent, radius);
-        self.window.seed(parent, 8, |q| cache.push(q));
+        self.window.seed(cell, 8, |q| cache.push(q));
         // Far from the rectangle's sides (the usual case), no candidate can
         // leave it: skip the per-attempt test, as the batch sampler does
         // far from the box's faces. 2-D candidates lie within
@@ -820,7 +824,8 @@ impl<R: Rng> Pixels<R> {
             if blocked {
                 continue;
             }
-            if let Some(q) = self.window.conflict(&c) {
+            let (key, hit) = self.window.conflict(&c);
+            if let Some(q) = hit {
                 cache.push(&q);
                 continue;
             }
@@ -833,7 +838,7 @@ impl<R: Rng> Pixels<R> {
             )]
             let pixel = (c[0] as u32 as usize, c[1] as u32 as usize);
             let list = only_current || self.exact.is_some();
-            if self.window.insert(c, pixel, (list, only_current)) {
+            if self.window.insert((c, key), pixel, (list, only_current)) {
                 return Some(c);
             }
         }
@@ -847,13 +852,17 @@ impl<R: Rng> Pixels<R> {
         let (fx, fy) = (x as f64, y as f64);
         for _ in 0..self.attempts {
             let p = [fx + unit(&mut self.rng), fy + unit(&mut self.rng)];
-            if self.pixel_of(&p) != Some((x, y)) || self.window.conflict(&p).is_some() {
+            if self.pixel_of(&p) != Some((x, y)) {
+                continue;
+            }
+            let (key, hit) = self.window.conflict(&p);
+            if hit.is_some() {
                 continue;
             }
             let paper = self.scheme == Scheme::Paper;
             if self
                 .window
-                .insert(p, (x, y), (paper || self.exact.is_some(), paper))
+                .insert((p, key), (x, y), (paper || self.exact.is_some(), paper))
             {
                 if self.scheme != Scheme::Paper {
                     self.push(p);

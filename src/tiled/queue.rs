@@ -30,8 +30,9 @@ pub(crate) struct BandQueue {
     inv_height: f64,
     /// Emptied buckets, kept for their allocations.
     spare: Vec<Vec<[f64; 2]>>,
-    /// The next pick's bucket and index, drawn ahead.
-    next: Option<(u64, usize)>,
+    /// The next pick drawn ahead: its bucket and index, the point then at
+    /// that index and what `pick`'s `ahead` made of it.
+    next: Option<Ahead>,
 }
 
 impl BandQueue {
@@ -138,7 +139,9 @@ impl BandQueue {
     /// A random point of the lowest non-empty bucket, if that bucket starts
     /// below `limit`, with where it is (for [`Self::retire`]); the point
     /// stays queued. Also hands `ahead` the point the next pick will
-    /// probably take, so that its neighbourhood can be fetched meanwhile.
+    /// probably take, so that its neighbourhood can be fetched meanwhile,
+    /// and keeps what `ahead` returns (the sweep: the point's cell key):
+    /// the pick that takes that point returns it too, `None` otherwise.
     ///
     /// The next pick's index is drawn now, uniform over one more than the
     /// bucket's length, and kept if the bucket is still the front one and
@@ -150,8 +153,8 @@ impl BandQueue {
         &mut self,
         limit: f64,
         rng: &mut R,
-        ahead: impl FnOnce(&[f64; 2]),
-    ) -> Option<(Place, [f64; 2])> {
+        ahead: impl FnOnce(&[f64; 2]) -> usize,
+    ) -> Option<(Place, [f64; 2], Option<usize>)> {
         loop {
             let front = self.buckets.front()?;
             if front.is_empty() {
@@ -165,21 +168,34 @@ impl BandQueue {
                 return None;
             }
             let len = front.len();
-            let index = match self.next {
-                Some((bucket, i)) if bucket == self.base && i < len => i,
-                _ => below(rng, len),
+            let (index, known) = match self.next {
+                Some(a) if a.bucket == self.base && a.index < len => (a.index, Some(a)),
+                _ => (below(rng, len), None),
             };
-            let next = below(rng, len + 1);
-            self.next = Some((self.base, next));
-            if let Some(p) = front.get(next) {
-                ahead(p);
-            }
             let point = *front.get(index)?;
+            // A retire or a push since the draw may have put another point
+            // at that index (`swap_remove`), or there was none yet.
+            let tag = known.filter(|a| a.point == point).map(|a| a.tag);
+            let next = below(rng, len + 1);
+            self.next = Some(match front.get(next) {
+                Some(&p) => Ahead {
+                    bucket: self.base,
+                    index: next,
+                    point: p,
+                    tag: ahead(&p),
+                },
+                None => Ahead {
+                    bucket: self.base,
+                    index: next,
+                    point: [f64::NAN; 2],
+                    tag: 0,
+                },
+            });
             let place = Place {
                 bucket: self.base,
                 index,
             };
-            return Some((place, point));
+            return Some((place, point, tag));
         }
     }
 
@@ -195,6 +211,17 @@ impl BandQueue {
             list.swap_remove(place.index);
         }
     }
+}
+
+/// The next pick, drawn ahead.
+#[derive(Clone, Copy, Debug)]
+struct Ahead {
+    bucket: u64,
+    index: usize,
+    /// The point at `index` when drawn (NaN if there was none: it equals
+    /// no point).
+    point: [f64; 2],
+    tag: usize,
 }
 
 /// Where a picked point sits in the queue.

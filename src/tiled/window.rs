@@ -392,22 +392,30 @@ impl Window {
     }
 
     /// A stored point closer than `r` to `p` (a point inside the raster,
-    /// in a row at or below the current one), if any.
+    /// in a row at or below the current one), if any; and `p`'s cell key
+    /// (`RollingGrid::key`), for [`Self::insert`].
     #[inline(always)]
-    pub(crate) fn conflict(&self, p: &[f64; 2]) -> Option<[f64; 2]> {
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         self.grid.conflict(p)
     }
 
-    /// Asks the cache for the grid cells around `p`.
-    #[inline(always)]
-    pub(crate) fn prefetch(&self, p: &[f64; 2]) {
-        self.grid.prefetch(p);
+    /// The cell key of `p`, a point inside the raster.
+    pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
+        self.grid.key(p)
     }
 
-    /// Hands up to `limit` stored points near `p` to `take`.
+    /// Asks the cache for the grid cells around `p` (wide windows); `p`'s
+    /// cell key.
     #[inline(always)]
-    pub(crate) fn seed(&self, p: &[f64; 2], limit: usize, take: impl FnMut(&[f64; 2])) {
-        self.grid.seed(p, limit, take);
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        self.grid.prefetch(p)
+    }
+
+    /// Hands up to `limit` stored points around the cell with key `key`
+    /// to `take`.
+    #[inline(always)]
+    pub(crate) fn seed(&self, key: usize, limit: usize, take: impl FnMut(&[f64; 2])) {
+        self.grid.seed(key, limit, take);
     }
 
     /// Stores exact mode's dart `p` in the grid only (see
@@ -416,19 +424,20 @@ impl Window {
         self.grid.replace(p);
     }
 
-    /// Stores `p` in the grid, counts it in its pixel, with `list` adds
+    /// Stores `p` in the grid (its cell's key is `key`, from
+    /// [`Self::conflict`]), counts it in its pixel, with `list` adds
     /// it to its pixel's points (the paper's scheme, exact mode) and with
     /// `active` to its active points (the paper's scheme). Returns `false`
     /// (storing nothing) if its cell is taken, which only rounding can
     /// cause; the caller treats it as a failed attempt.
     pub(crate) fn insert(
         &mut self,
-        p: [f64; 2],
+        (p, key): ([f64; 2], usize),
         pixel: (usize, usize),
         (list, active): (bool, bool),
     ) -> bool {
         let index = self.slot_index(pixel.0, pixel.1);
-        if index >= self.counts.len() || !self.grid.insert(p) {
+        if index >= self.counts.len() || !self.grid.insert(p, key) {
             return false;
         }
         if let Some(count) = self.counts.get_mut(index) {
