@@ -263,10 +263,12 @@
 mod render;
 // Streaming.
 mod tiled;
-// Core: the sampler, where its candidates fall, its per-pick cache.
+// Core: the sampler, where its candidates fall, its per-pick cache, its
+// parallel form (slabs).
 mod candidates;
 mod conflict_cache;
 mod count;
+mod parallel;
 mod sampler;
 mod varying;
 // The background grid.
