@@ -60,12 +60,12 @@ fn main() -> ExitCode {
 }
 
 /// The slab count `generate_parallel` picks along axis 0 of the unit cube:
-/// the largest power of two up to 64 leaving slabs at least 16 radii thick
+/// the largest power of two up to 32 leaving slabs at least 16 radii thick
 /// (its docs; one slab below 32 radii).
 fn slab_count(radius: f64) -> usize {
     let across = 1.0 / radius;
     let mut slabs = 1;
-    while slabs < 64 && (2 * slabs) as f64 * 16.0 <= across {
+    while slabs < 32 && (2 * slabs) as f64 * 16.0 <= across {
         slabs *= 2;
     }
     slabs
