@@ -120,6 +120,12 @@ pub enum Error {
         /// The budget in force.
         budget: u64,
     },
+    /// Occurs when a sampler with a point cap
+    /// ([`Builder::max_points`](crate::Builder::max_points)) is asked for a
+    /// parallel run ([`PoissonDisk::generate_parallel`](crate::PoissonDisk::generate_parallel)):
+    /// a cap keeps a prefix of one run's stream, and a parallel run has no
+    /// single stream. Bound its memory with the budget instead.
+    PointCapInParallel,
     /// Occurs when a pixel sampler is asked for 0 samples per pixel, or for
     /// more than it supports.
     InvalidSamplesPerPixel {
@@ -208,6 +214,9 @@ impl fmt::Display for Error {
                 f,
                 "the run stopped after {points} points: the next one would take its memory past \
                  the budget of {budget} bytes (the points made are valid, but not complete)"
+            ),
+            Self::PointCapInParallel => f.write_str(
+                "a parallel run takes no point cap (a cap keeps a prefix of one run's stream)",
             ),
             Self::InvalidSamplesPerPixel { spp, max } => write!(
                 f,

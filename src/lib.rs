@@ -12,7 +12,9 @@
 //!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
 //!   and clear of pre-placed points, which also gives seamless chunks of
 //!   an endless world (README has the recipe), and
-//!   [`PoissonDisk::iter_varying`] lets the radius vary with position.
+//!   [`PoissonDisk::iter_varying`] lets the radius vary with position;
+//!   [`PoissonDisk::generate_parallel`] makes a set on several threads,
+//!   slab by slab (a different set from one run's, with its statistics).
 //! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
 //!   scan order, while its memory stays proportional to one row of pixels:
 //!   for rasters too large to hold a set of, or a renderer that works a
@@ -263,10 +265,12 @@
 mod render;
 // Streaming.
 mod tiled;
-// Core: the sampler, where its candidates fall, its per-pick cache.
+// Core: the sampler, where its candidates fall, its per-pick cache, its
+// parallel form (slabs).
 mod candidates;
 mod conflict_cache;
 mod count;
+mod parallel;
 mod sampler;
 mod varying;
 // The background grid.

@@ -7,6 +7,7 @@ use crate::common::{Failure, report};
 use bridson::{DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, PoissonDisk, Scheme, Tiled};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
+use std::num::NonZeroUsize;
 use std::time::{Duration, Instant};
 
 pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
@@ -23,19 +24,15 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
         return run_varying::<N>(config, range);
     }
     let sampler = build::<N>(config).map_err(Failure::Usage)?;
+    let run = (config.seed, config.threads);
     let (count, elapsed, layout, stopped) = match (config.format, &config.out) {
-        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, config.seed),
+        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, run),
         (format, Some(path)) => {
             let file = File::create(path)
                 .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
-            write_points(BufWriter::new(file), format, &sampler, config.seed)
+            write_points(BufWriter::new(file), format, &sampler, run)
         }
-        (format, None) => write_points(
-            BufWriter::new(io::stdout().lock()),
-            format,
-            &sampler,
-            config.seed,
-        ),
+        (format, None) => write_points(BufWriter::new(io::stdout().lock()), format, &sampler, run),
     }
     .map_err(|e| {
         let target = config
@@ -142,20 +139,32 @@ fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], St
         .map_err(|_| format!("{flag} needs exactly {N} values, got {}", values.len()))
 }
 
-/// Streams the points of `seed` to `out` in `format`, flushing at the end.
-/// Returns the count, the time from building the grid to the flush, the
-/// layout built, and why the run stopped early if it did (the budget).
+/// Streams the points of `seed` to `out` in `format`, flushing at the end;
+/// with `threads`, generates them all in parallel first
+/// (`generate_parallel`), then writes them. Returns the count, the time from
+/// building the grid to the flush, the layout built (planned, in parallel),
+/// and why the run stopped early if it did (the budget).
 fn write_points<const N: usize, W: Write>(
     out: W,
     format: Format,
     sampler: &PoissonDisk<N>,
-    seed: u64,
+    (seed, threads): (u64, Option<NonZeroUsize>),
 ) -> io::Result<(u64, Duration, GridLayout, Option<Error>)> {
     let start = Instant::now();
-    let mut points = sampler.iter_seeded(seed);
-    let layout = points.layout();
     let domain = sampler.domain();
     let header = (sampler.radius(), domain.lo(), domain.hi());
+    if let Some(threads) = threads {
+        let layout = sampler.resolved_layout();
+        return match sampler.generate_parallel(seed, threads) {
+            Ok(points) => {
+                let count = write_stream(out, format, header, points.into_iter())?;
+                Ok((count, start.elapsed(), layout, None))
+            }
+            Err(e) => Ok((0, start.elapsed(), layout, Some(e))),
+        };
+    }
+    let mut points = sampler.iter_seeded(seed);
+    let layout = points.layout();
     let count = write_stream(out, format, header, points.by_ref())?;
     Ok((count, start.elapsed(), layout, points.error()))
 }
@@ -376,7 +385,7 @@ mod tests {
         let c = config(line);
         let sampler = build::<N>(&c).unwrap();
         let mut bytes = Vec::new();
-        write_points(&mut bytes, c.format, &sampler, c.seed).unwrap();
+        write_points(&mut bytes, c.format, &sampler, (c.seed, c.threads)).unwrap();
         String::from_utf8(bytes).unwrap()
     }
 
@@ -395,6 +404,28 @@ mod tests {
             .collect();
         assert!(!got.is_empty(), "some points");
         assert_eq!(got, expected, "CSV round-trips to the generated points");
+    }
+
+    #[test]
+    fn threads_write_the_parallel_set() {
+        let line = "--dim 2 --radius 0.01 --extent 1,0.2 --seed 3 --threads 2";
+        let c = config(line);
+        let sampler = build::<2>(&c).unwrap();
+        let expected = sampler.generate_parallel(3, NonZeroUsize::MIN).unwrap();
+        assert_ne!(
+            expected,
+            sampler.generate_seeded(3).unwrap(),
+            "a set of its own"
+        );
+        let got: Vec<[f64; 2]> = output::<2>(line)
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1]]
+            })
+            .collect();
+        assert_eq!(got, expected, "{line}: the parallel set, as on one thread");
     }
 
     #[test]
