@@ -37,18 +37,14 @@ pub(super) struct TiledRepr {
     exact_oversample: f64,
     #[serde(default)]
     exact_edge_bias: Option<[f64; 3]>,
-    #[serde(default = "default_attempts")]
-    attempts: u32,
+    #[serde(default)]
+    attempts: Option<u32>,
     #[serde(default)]
     candidates: Candidates,
     #[serde(default)]
     scheme: Scheme,
     #[serde(default = "default_window")]
     max_window_bytes: u64,
-}
-
-fn default_attempts() -> u32 {
-    crate::DEFAULT_ATTEMPTS
 }
 
 fn default_oversample() -> f64 {
