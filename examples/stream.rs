@@ -100,9 +100,9 @@ struct Args {
     /// Exact mode: how excess points are dropped (both: each in turn)
     #[arg(long, value_name = "METHOD", value_enum, default_value_t = MethodArg::Eliminate)]
     method: MethodArg,
-    /// Exact mode: the sweep's points per pixel over N
-    #[arg(long, value_name = "S", default_value_t = 1.25)]
-    oversample: f64,
+    /// Exact mode: the sweep's points per pixel over N [default: 1.16]
+    #[arg(long, value_name = "S")]
+    oversample: Option<f64>,
     /// Exact mode: edge correction BX,BY [default: the calibrated one]
     #[arg(long, value_name = "BX,BY,GY", value_parser = triple)]
     bias: Option<[f64; 3]>,
@@ -110,6 +110,9 @@ struct Args {
     /// correction, at oversamplings 1 to 3, and chart the trade-off (PNG)
     #[arg(long, value_name = "FILE", requires = "exact")]
     chart: Option<std::path::PathBuf>,
+    /// The streamed runs' attempts k [default: 30; exact mode 10]
+    #[arg(long, value_name = "K")]
+    attempts: Option<u32>,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
@@ -410,12 +413,17 @@ fn median(mut values: Vec<f64>) -> f64 {
 fn builder_for(args: &Args, scheme: Scheme, method: Option<ExactMethod>) -> TiledBuilder {
     let (width, height) = args.size;
     let builder = Tiled::builder(width, height).scheme(scheme);
+    let builder = match args.attempts {
+        Some(k) => builder.attempts(k),
+        None => builder,
+    };
     match (args.exact, method, args.radius) {
         (Some(n), Some(method), _) => {
-            let b = builder
-                .exact(n)
-                .exact_method(method)
-                .exact_oversample(args.oversample);
+            let b = builder.exact(n).exact_method(method);
+            let b = match args.oversample {
+                Some(s) => b.exact_oversample(s),
+                None => b,
+            };
             match args.bias {
                 Some(beta) => b.exact_edge_bias(beta),
                 None => b,
@@ -455,14 +463,16 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
             });
         }
     }
-    let radius = match list.first() {
-        Some(Program::Stream { tiled, .. }) => tiled.radius(),
+    let (radius, attempts) = match list.first() {
+        Some(Program::Stream { tiled, .. }) => (tiled.radius(), tiled.attempts()),
         _ => return Ok(list),
     };
-    // Exact mode against the plain sweep that makes its points.
+    // Exact mode against the plain sweep that makes its points (same r,
+    // same k).
     if args.exact.is_some() && !args.no_sweep {
         let tiled = Tiled::builder(width, height)
             .radius(radius)
+            .attempts(attempts)
             .build()
             .map_err(|e| e.to_string())?;
         let label = "sweep at the same r".to_owned();

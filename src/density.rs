@@ -250,7 +250,7 @@ const ATTEMPTS_3D: [[[f64; 2]; 15]; 2] = [
 /// `[m, Δ]` of [`ATTEMPTS_2D`] / [`ATTEMPTS_3D`] at `k`, linear between
 /// the tabulated `k` (clamped to the table's ends); `[1, 0]` outside 2-D
 /// and 3-D, where count mode is calibrated at `k = 30` only.
-fn attempts_factors<const N: usize>(sphere: bool, k: u32) -> [f64; 2] {
+pub(crate) fn attempts_factors<const N: usize>(sphere: bool, k: u32) -> [f64; 2] {
     let tables = match N {
         2 => &ATTEMPTS_2D,
         3 => &ATTEMPTS_3D,

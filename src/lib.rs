@@ -303,7 +303,8 @@ pub use crate::sampler::{
     PoissonDisk3, Region,
 };
 pub use crate::tiled::{
-    DEFAULT_MAX_WINDOW_BYTES, ExactMethod, Pixel, Pixels, Scheme, Tiled, TiledBuilder,
+    DEFAULT_MAX_WINDOW_BYTES, EXACT_ATTEMPTS, ExactMethod, Pixel, Pixels, Scheme, Tiled,
+    TiledBuilder,
 };
 pub use crate::varying::Varying;
 /// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and

@@ -3,8 +3,8 @@
 //! correction, drawn as one PNG of four panels: the power at the pixel
 //! frequency, ρ of the minimum distance, the edge band farthest from the
 //! interior's density, and the speed (kept points/s over the sweep's own
-//! points/s at the same radius, both measured in this run in CPU time, the
-//! sweep first at each `s`).
+//! points/s at the same radius and `k`, both measured in this run in CPU
+//! time, the sweep first at each `s`).
 
 use crate::canvas::{Canvas, Rgb, WHITE};
 use crate::line_chart::{LineChart, Reference, Series};
@@ -13,7 +13,7 @@ use bridson::{ExactMethod, Tiled, TiledBuilder};
 use std::path::Path;
 
 /// The oversamplings measured.
-const OVERSAMPLINGS: [f64; 7] = [1.0, 1.1, 1.25, 1.4, 1.6, 2.0, 3.0];
+const OVERSAMPLINGS: [f64; 8] = [1.0, 1.1, 1.16, 1.25, 1.4, 1.6, 2.0, 3.0];
 
 /// One method as charted.
 struct Variant {
@@ -86,18 +86,18 @@ pub(crate) fn chart(
     let area = f64::from(width) * f64::from(height);
     let mut figures: Vec<Vec<[f64; 2]>> = vec![Vec::new(); 4 * VARIANTS.len()];
     for s in OVERSAMPLINGS {
-        let radius = Tiled::builder(width, height)
+        let exact = Tiled::builder(width, height)
             .exact(n)
             .exact_oversample(s)
             .build()
-            .map_err(|e| e.to_string())?
-            .radius();
-        let (_, sweep, sweep_seconds) =
-            run(Tiled::builder(width, height).radius(radius), width, seed)?;
+            .map_err(|e| e.to_string())?;
+        let (radius, k) = (exact.radius(), exact.attempts());
+        let sweep_at = Tiled::builder(width, height).radius(radius).attempts(k);
+        let (_, sweep, sweep_seconds) = run(sweep_at, width, seed)?;
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let sweep_rate = sweep.points as f64 / sweep_seconds;
         println!(
-            "s = {s}: sweep at r = {radius:.5}: {:.3} M points/s",
+            "s = {s}: sweep at r = {radius:.5}, k = {k}: {:.3} M points/s",
             sweep_rate / 1e6
         );
         for (k, v) in VARIANTS.iter().enumerate() {

@@ -7,7 +7,8 @@
 //! `per_pixel` is refused, since the builder keeps only the last one given.
 //! Exact mode's knobs are `exact_method` (`"eliminate"`, `"random"`),
 //! `exact_oversample` and `exact_edge_bias` (`[βx, βy, γ]` or null for the
-//! calibrated table), checked by `build()` like the rest.
+//! calibrated table), checked by `build()` like the rest. `attempts` absent
+//! or null means the default `k` (30, or `EXACT_ATTEMPTS` in exact mode).
 //! A [`Tiled`] is (de)serialised as its builder, and deserialising it runs
 //! [`TiledBuilder::build`], so a bad file is an [`Error`], never a bad
 //! sampler.
@@ -37,18 +38,14 @@ pub(super) struct TiledRepr {
     exact_oversample: f64,
     #[serde(default)]
     exact_edge_bias: Option<[f64; 3]>,
-    #[serde(default = "default_attempts")]
-    attempts: u32,
+    #[serde(default)]
+    attempts: Option<u32>,
     #[serde(default)]
     candidates: Candidates,
     #[serde(default)]
     scheme: Scheme,
     #[serde(default = "default_window")]
     max_window_bytes: u64,
-}
-
-fn default_attempts() -> u32 {
-    crate::DEFAULT_ATTEMPTS
 }
 
 fn default_oversample() -> f64 {

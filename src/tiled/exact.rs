@@ -58,11 +58,23 @@ use std::collections::BinaryHeap;
 
 /// Points per pixel the sweep makes, relative to the `n` kept, unless
 /// [`TiledBuilder::exact_oversample`](super::TiledBuilder::exact_oversample)
-/// says otherwise. The kept set's ρ is about the sweep's (0.73) over `√s`,
-/// 0.65 here; a larger `s` gives elimination more to choose from at the
-/// cost of the minimum distance and of speed (`docs/performance-journal.md`
-/// has the trade-off).
-pub(crate) const DEFAULT_OVERSAMPLE: f64 = 1.25;
+/// says otherwise. The kept set's ρ is about the sweep's over `√s`: 0.705
+/// at [`EXACT_ATTEMPTS`], so 0.655 here, the radius of the former default
+/// (`s = 1.25` at `k = 30`, where the sweep's ρ is 0.73) to within 0.3 %.
+/// A larger `s` gives elimination more to choose from at the cost of the
+/// minimum distance and of speed (`docs/performance-journal.md` has the
+/// trade-off).
+pub(crate) const DEFAULT_OVERSAMPLE: f64 = 1.16;
+
+/// The attempts `k` exact mode's sweep runs with unless
+/// [`TiledBuilder::attempts`](super::TiledBuilder::attempts) says
+/// otherwise. A third of the usual 30: thinning, not the sweep's
+/// saturation, shapes the kept set, and the sweep's retiring picks (their
+/// `k` failed throws) are a third of its time. At `k = 10` the sweep makes
+/// 0.93 of the points per `r²` it makes at 30; `DEFAULT_OVERSAMPLE` is
+/// counted at this `k`. The journal has the measurements (exact mode at
+/// `k = 6` to `30`).
+pub const EXACT_ATTEMPTS: u32 = 10;
 
 /// Exponent of the elimination weight (Yuksel's α).
 const ALPHA: i32 = 8;
@@ -70,6 +82,12 @@ const ALPHA: i32 = 8;
 /// Darts thrown per point a short pixel needs, first and at most.
 const DARTS: usize = 32;
 const DARTS_MORE: usize = 256;
+/// Further rounds of [`DARTS_MORE`] fresh darts, taking from any pixel the
+/// pass allows, before a short pixel gets a top-up: its room can be a
+/// sliver. At exact mode's `k = 10` the last stage's 256 darts missed it
+/// about once per 10⁶ points (ten top-ups in sixteen runs of 512² at
+/// `n = 4`); with 2 048 darts in all, none in fourteen.
+const RESCUE_ROUNDS: usize = 7;
 
 /// A dart with more blockers than this is not taken.
 const MAX_BLOCKERS: usize = 4;
@@ -90,7 +108,8 @@ const MAX_BLOCKERS: usize = 4;
 /// four scenes at 4, 16 and 64 samples per pixel, one exact stream over
 /// the image as a renderer runs it), random dropping's RMSE was 0–12 %
 /// higher: beyond the noise on the checkerboard, the moving sphere and
-/// (from 16 samples) the lit figure, level on the depth-of-field scene.
+/// (from 16 samples) the lit figure, level on the depth-of-field scene;
+/// with the sweep at `k = 10` (its third study), 0.1–7.8 % higher.
 /// Random dropping samples faster (0.76–0.79 of elimination's sampling
 /// time there); a renderer whose sampling costs more than its shading may
 /// prefer it.
@@ -110,35 +129,43 @@ pub enum ExactMethod {
     Random,
 }
 
-/// The edge correction `[βx, βy, γ]` (see [`Exact::edge_factor`]) that
-/// zeroes the first harmonic of the kept density across a pixel at the
-/// default oversampling, measured with `examples/stream.rs --exact N
-/// --method M` and `--bias` at two settings each, on about 10⁶ points
-/// (512², 256², 128² pixels for `n` = 4, 16, 64; the harmonic is linear in
-/// each): β from `0,0,0` and `0.2,0.2,0`, then γ from `βx,βy,0` and
-/// `βx,βy,0.1` (for elimination at `n = 4`, refined from two seeds at two
-/// more settings, the response being less linear). `βx` for elimination
-/// at `n = 64` and `βx, βy` for random dropping at `n = 16` were refined at
-/// 512² (1.7·10⁷ and 4.2·10⁶ points), where the harmonic left by the
-/// 10⁶-point calibration (0.1 %) still showed as power 4–7: two seeds at
-/// the old value and one more setting each. Linear in `n` between those, the `n = 4` values below (at
-/// `n = 1` no β helps: a quarter of the pixels are short there), the
-/// `n = 64` values above. `y` differs from `x` because rows are settled in
-/// order and columns together: darts take room from the row below (γ < 0),
-/// and elimination sees the rows above settled and the row below
-/// oversampled. Other oversamplings keep these values, which then fit less
-/// well (`docs/images/exact-tradeoff.png`).
-fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
-    let table: [(f64, [f64; 3]); 3] = match method {
+/// The edge correction `[βx, βy, γ, δ]` (see [`Exact::edge_factor`]) at
+/// the default oversampling and `k` ([`DEFAULT_OVERSAMPLE`],
+/// [`EXACT_ATTEMPTS`]). `δ` lifts the top band, which the rows above
+/// deplete (their darts kill points near it, and elimination sees their
+/// final points): at `n = 4` it was 0.93–0.94 of the interior without it
+/// (elimination; random dropping 0.95–0.96). It was set by hand, trying
+/// 0 to 0.6 with a throwaway build that read it from the environment (0.2:
+/// top bands 0.96–0.97 for elimination, 0.95–0.97 for random dropping, 512²
+/// and 256², three seeds); at `n >= 16` the bands are within 1–3 % without
+/// it (at `n = 8` interpolating the rest gave power 4–9, hence its row).
+/// Then, with `δ` fixed, `[βx, βy, γ]` zero the first harmonic of the
+/// kept density across a pixel, measured with `examples/stream.rs --exact
+/// N --method M --bias ...` on about 10⁶ points (512², 362², 256², 128²
+/// pixels for `n` = 4, 8, 16, 64, `δ` 0.2, 0.1, 0, 0; seeds 1 and 2
+/// averaged; the harmonic is linear in
+/// each): β from two settings, then γ from two (the script and its runs
+/// are in the journal, "Exact mode at k = 10"). Linear in `n` between
+/// those, the `n = 4` values below (at `n = 1` no β helps: a quarter of
+/// the pixels are short there), the `n = 64` values above. `y` differs
+/// from `x` because rows are settled in order and columns together: darts
+/// take room from the row below, and elimination sees the rows above
+/// settled and the row below oversampled. Other oversamplings and `k`
+/// keep these values, which then fit less well
+/// (`docs/images/exact-tradeoff.png`).
+fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 4] {
+    let table: [(f64, [f64; 4]); 4] = match method {
         ExactMethod::Eliminate => [
-            (4.0, [0.151, 0.124, -0.019]),
-            (16.0, [0.067, 0.066, 0.016]),
-            (64.0, [0.010, 0.061, 0.023]),
+            (4.0, [0.193, 0.078, -0.063, 0.2]),
+            (8.0, [0.113, 0.072, -0.007, 0.1]),
+            (16.0, [0.072, 0.077, 0.008, 0.0]),
+            (64.0, [0.007, 0.034, 0.017, 0.0]),
         ],
         ExactMethod::Random => [
-            (4.0, [0.236, 0.193, -0.036]),
-            (16.0, [0.030, 0.030, 0.0]),
-            (64.0, [0.0, 0.0, 0.0]),
+            (4.0, [0.314, 0.138, -0.074, 0.2]),
+            (8.0, [0.150, 0.059, -0.008, 0.1]),
+            (16.0, [0.048, 0.038, -0.026, 0.0]),
+            (64.0, [0.0, 0.0, 0.0, 0.0]),
         ],
     };
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
@@ -156,6 +183,21 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 3] {
     }
     beta
 }
+
+/// Uniform darts in the pixel whose corner is `(fx, fy)`.
+fn throw_darts<R: Rng + ?Sized>(darts: &mut [[f64; 2]], (fx, fy): (f64, f64), rng: &mut R) {
+    for d in darts {
+        *d = [fx + unit(rng), fy + unit(rng)];
+        // Rounding onto the far edge: the pixel's corner instead.
+        if d[0] >= fx + 1.0 || d[1] >= fy + 1.0 {
+            *d = [fx, fy];
+        }
+    }
+}
+
+/// The depth of a pixel's top band that the calibrated correction's `δ`
+/// term favours (see [`Exact::edge_factor`]), in pixels.
+const TOP_BAND: f64 = 0.2;
 
 /// Pixel column `x` and its neighbours inside a raster `width` wide: all
 /// the columns a point of column `x` can be closer than `r` to, as `r < 1`.
@@ -218,8 +260,10 @@ struct Blockers {
 pub(crate) struct Exact {
     n: usize,
     method: ExactMethod,
-    /// β along x and y, of [`Self::edge_factor`].
+    /// `[βx, βy, γ]` of [`Self::edge_factor`].
     bias: [f64; 3],
+    /// Its `δ`: 0 when the caller set the correction.
+    top: f64,
     /// `2rₑ`: the reach of the elimination weight, and its inverse.
     reach: f64,
     inv_reach: f64,
@@ -286,7 +330,13 @@ impl Exact {
     /// Settings for `n` points per pixel, thinned by `method` from a sweep
     /// of radius `radius`.
     pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
-        let bias = bias.unwrap_or_else(|| calibrated_bias(method, n));
+        let (bias, top) = match bias {
+            Some(b) => (b, 0.0),
+            None => {
+                let [bx, by, g, d] = calibrated_bias(method, n);
+                ([bx, by, g], d)
+            }
+        };
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
         let reach = 2.0 * r_e;
@@ -318,6 +368,7 @@ impl Exact {
             n,
             method,
             bias,
+            top,
             reach,
             inv_reach: 1.0 / reach,
             radius_squared: radius * radius,
@@ -348,10 +399,12 @@ impl Exact {
     }
 
     /// How readily point `i` is dropped for where it lies in its pixel,
-    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1)`, with
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v)`, with
     /// `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
-    /// -1/3 at its centre); so positive β keep points near the edges, and a
-    /// positive γ keeps them near the bottom.
+    /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
+    /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
+    /// keep points near the edges, a positive γ keeps them near the bottom
+    /// and a positive δ near the top.
     fn edge_factor(&self, i: usize) -> f64 {
         let Some(p) = self.points.get(i) else {
             return 1.0;
@@ -361,7 +414,17 @@ impl Exact {
             (2.0 * f - 1.0) * (2.0 * f - 1.0) - 1.0 / 3.0
         };
         let v = p[1] - p[1].floor();
-        1.0 - self.bias[0] * h(p[0]) - self.bias[1] * h(p[1]) - self.bias[2] * (2.0 * v - 1.0)
+        // The top band's ramp, minus its mean over the pixel.
+        let t = (1.0 - v / TOP_BAND).max(0.0) - TOP_BAND / 2.0;
+        1.0 - self.bias[0] * h(p[0])
+            - self.bias[1] * h(p[1])
+            - self.bias[2] * (2.0 * v - 1.0)
+            - self.top * t
+    }
+
+    /// Whether [`Self::edge_factor`] can differ from 1.
+    fn corrects(&self) -> bool {
+        self.bias != [0.0; 3] || self.top != 0.0
     }
 
     fn weight_of(&self, d2: f64) -> f64 {
@@ -673,38 +736,33 @@ impl Exact {
             if take == Take::Any && !settled_ok {
                 continue;
             }
-            for d in darts.get_mut(thrown..count).unwrap_or(&mut []) {
-                *d = [fx + unit(rng), fy + unit(rng)];
-                // Rounding onto the far edge: the pixel's corner instead.
-                if d[0] >= fx + 1.0 || d[1] >= fy + 1.0 {
-                    *d = [fx, fy];
-                }
-            }
+            throw_darts(
+                darts.get_mut(thrown..count).unwrap_or(&mut []),
+                (fx, fy),
+                rng,
+            );
             thrown = thrown.max(count);
-            let mut best: Option<([f64; 2], Blockers)> = None;
-            for d in darts.get(..count).unwrap_or(&[]) {
-                // Only a dart with fewer blockers than the best so far can
-                // be taken: the search gives up on the others early.
-                let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
-                if let Some(b) = self.blockers(window, d, (x, y), (width, band_rows), (take, cap))
-                    && best.is_none_or(|(_, c)| b.count < c.count)
-                {
-                    best = Some((*d, b));
-                    if b.count == 0 {
-                        break;
-                    }
-                }
+            let found = self.best_dart(
+                window,
+                darts.get(..count).unwrap_or(&[]),
+                (x, y),
+                (width, band_rows),
+                take,
+            );
+            if let Some((d, b)) = found {
+                self.take_dart(window, d, b, x);
+                return 0;
             }
-            if let Some((d, b)) = best {
-                for &i in b.items.get(..b.count).unwrap_or(&[]) {
-                    self.kill(i as usize);
-                }
-                self.push_dart(d, x);
-                // The sweep's later points keep their distance from it.
-                // Its cell can only hold a point that is out (a blocker,
-                // or one thinned before): two points in one cell are
-                // closer than r.
-                window.replace(d);
+        }
+        let take = if settled_ok {
+            Take::Any
+        } else {
+            Take::Unsettled
+        };
+        for _ in 0..RESCUE_ROUNDS {
+            throw_darts(&mut darts, (fx, fy), rng);
+            if let Some((d, b)) = self.best_dart(window, &darts, (x, y), (width, band_rows), take) {
+                self.take_dart(window, d, b, x);
                 return 0;
             }
         }
@@ -738,6 +796,45 @@ impl Exact {
         }
         self.push_dart(best.1, x);
         1
+    }
+
+    /// The dart of `darts` with the fewest blockers that `take` may remove
+    /// (at most [`MAX_BLOCKERS`]), the first such; `None` if none can go.
+    fn best_dart(
+        &self,
+        window: &Window,
+        darts: &[[f64; 2]],
+        (x, y): (usize, usize),
+        (width, band_rows): (usize, usize),
+        take: Take,
+    ) -> Option<([f64; 2], Blockers)> {
+        let mut best: Option<([f64; 2], Blockers)> = None;
+        for d in darts {
+            // Only a dart with fewer blockers than the best so far can be
+            // taken: the search gives up on the others early.
+            let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
+            if let Some(b) = self.blockers(window, d, (x, y), (width, band_rows), (take, cap))
+                && best.is_none_or(|(_, c)| b.count < c.count)
+            {
+                best = Some((*d, b));
+                if b.count == 0 {
+                    break;
+                }
+            }
+        }
+        best
+    }
+
+    /// Places dart `d` in column `x`, its blockers `b` removed.
+    fn take_dart(&mut self, window: &mut Window, d: [f64; 2], b: Blockers, x: usize) {
+        for &i in b.items.get(..b.count).unwrap_or(&[]) {
+            self.kill(i as usize);
+        }
+        self.push_dart(d, x);
+        // The sweep's later points keep their distance from it. Its cell
+        // can only hold a point that is out (a blocker, or one thinned
+        // before): two points in one cell are closer than r.
+        window.replace(d);
     }
 
     fn kill(&mut self, i: usize) {
@@ -1068,7 +1165,7 @@ impl Exact {
             };
             // Darts only go to short pixels, which end at n: an excess
             // pixel's live points are all among its gathered ones.
-            if self.count.get(x).is_some_and(|&c| c > self.n) && self.bias != [0.0; 3] {
+            if self.count.get(x).is_some_and(|&c| c > self.n) && self.corrects() {
                 let mut factors = core::mem::take(&mut self.factor);
                 factors.clear();
                 factors.extend((a..z).map(|i| self.edge_factor(i)));
@@ -1077,7 +1174,7 @@ impl Exact {
             while let Some(&c) = self.count.get(x)
                 && c > self.n
             {
-                if self.bias == [0.0; 3] {
+                if !self.corrects() {
                     let mut k = below(rng, c);
                     for i in a..z {
                         if self.alive.get(i) == Some(&true) {

@@ -43,6 +43,7 @@ use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::sampler::check_radius_and_attempts;
 use crate::vector::add;
 use core::iter::FusedIterator;
+pub use exact::EXACT_ATTEMPTS;
 pub use exact::ExactMethod;
 use exact::{DEFAULT_OVERSAMPLE, Exact};
 use queue::BandQueue;
@@ -66,7 +67,8 @@ pub enum Scheme {
     Paper,
 }
 
-/// Points per `r²` that the streaming mode produces at `k = 30`, used to
+/// Points per `r²` that the streaming mode produces at `k = 30` (other `k`
+/// scale it by count mode's measured factor), used to
 /// turn a desired number of samples per pixel into a radius:
 /// `r = sqrt(DENSITY / n)`. Measured over large images (see
 /// `examples/stream.rs`); the paper's rule `r = sqrt(8 / (5πn))` assumes
@@ -107,6 +109,8 @@ pub const DEFAULT_MAX_WINDOW_BYTES: u64 = 1 << 28;
 pub struct Tiled {
     settings: TiledBuilder,
     radius: f64,
+    /// `k`, resolved from the settings.
+    attempts: u32,
     plan: WindowPlan,
 }
 
@@ -138,7 +142,9 @@ pub struct TiledBuilder {
     width: u32,
     height: u32,
     spacing: Spacing,
-    attempts: u32,
+    /// `None`: [`DEFAULT_ATTEMPTS`](crate::DEFAULT_ATTEMPTS), or
+    /// [`EXACT_ATTEMPTS`] in exact mode.
+    attempts: Option<u32>,
     candidates: Candidates,
     scheme: Scheme,
     max_window_bytes: u64,
@@ -157,7 +163,8 @@ impl TiledBuilder {
     /// Exact mode: exactly `n` points in every pixel (overrides the
     /// spacing). The sweep runs at the radius that gives about `s·n` points
     /// per pixel (`s` from [`exact_oversample`](Self::exact_oversample),
-    /// 1.25 by default) and each row is thinned to `n` per pixel (see
+    /// 1.16 by default, at `k =` [`EXACT_ATTEMPTS`] unless
+    /// [`attempts`](Self::attempts) is set) and each row is thinned to `n` per pixel (see
     /// [`exact_method`](Self::exact_method)). A pixel the sweep left short
     /// gets darts at least [`Tiled::radius`] from every point kept, room
     /// made by removing points of neighbouring pixels that have more than
@@ -183,8 +190,9 @@ impl TiledBuilder {
     }
 
     /// Exact mode: the oversampling `s`, the sweep's points per pixel over
-    /// the `n` kept (default 1.25, from 1 to 16). The kept set's relative
-    /// radius ρ is about 0.73 / √s (0.65 at the default); a larger `s`
+    /// the `n` kept (default 1.16, from 1 to 16). The kept set's relative
+    /// radius ρ is about ρₖ / √s, where ρₖ is the sweep's own (0.705 at
+    /// exact mode's `k = 10`, 0.73 at 30): 0.655 at the defaults; a larger `s`
     /// leaves fewer pixels short and gives elimination more choice, at the
     /// cost of speed. Ignored outside exact mode.
     #[must_use]
@@ -218,17 +226,21 @@ impl TiledBuilder {
 
     /// Asks for about `n` points per pixel on average: the radius follows
     /// from the density the chosen candidates reach (`r = sqrt(0.62 / n)`
-    /// for the annulus, `sqrt(0.88 / n)` on the sphere, at `k = 30`).
+    /// for the annulus, `sqrt(0.88 / n)` on the sphere, at `k = 30`; at
+    /// other `k` the density count mode measured there).
     #[must_use]
     pub fn per_pixel(mut self, n: f64) -> Self {
         self.spacing = Spacing::PerPixel(n);
         self
     }
 
-    /// Attempts `k` per active point (default 30).
+    /// Attempts `k` per active point (default 30; in exact mode
+    /// [`EXACT_ATTEMPTS`], 10). The radius that
+    /// [`per_pixel`](Self::per_pixel) and [`exact`](Self::exact) derive
+    /// follows the density reached at this `k`.
     #[must_use]
     pub fn attempts(mut self, k: u32) -> Self {
-        self.attempts = k;
+        self.attempts = Some(k);
         self
     }
 
@@ -279,10 +291,15 @@ impl TiledBuilder {
         if self.height == 0 {
             return Err(Error::EmptyRaster { axis: 1 });
         }
-        let density = match self.candidates {
-            Candidates::Sphere => DENSITY_SPHERE,
-            _ => DENSITY_ANNULUS,
-        };
+        let attempts = self.resolved_attempts();
+        // Points per r² at this k: the k = 30 figure scaled as count mode
+        // measured it (`density::attempts_factors`).
+        let sphere = self.candidates == Candidates::Sphere;
+        let density = if sphere {
+            DENSITY_SPHERE
+        } else {
+            DENSITY_ANNULUS
+        } * crate::density::attempts_factors::<2>(sphere, attempts)[0];
         let radius = match (self.exact, self.spacing) {
             (Some(0), _) => return Err(Error::InvalidPerPixel),
             (Some(_), _)
@@ -299,7 +316,7 @@ impl TiledBuilder {
             (None, Spacing::PerPixel(n)) if n > 0.0 && n.is_finite() => (density / n).sqrt(),
             (None, Spacing::PerPixel(_)) => return Err(Error::InvalidPerPixel),
         };
-        check_radius_and_attempts(radius, self.attempts)?;
+        check_radius_and_attempts(radius, attempts)?;
         let too_large = |needed| Error::WindowTooLarge {
             needed,
             budget: self.max_window_bytes,
@@ -317,7 +334,18 @@ impl TiledBuilder {
         Ok(Tiled {
             settings: self,
             radius,
+            attempts,
             plan,
+        })
+    }
+
+    /// The `k` the sweep runs with: the one set, else exact mode's default
+    /// or the crate's.
+    fn resolved_attempts(&self) -> u32 {
+        self.attempts.unwrap_or(if self.exact.is_some() {
+            EXACT_ATTEMPTS
+        } else {
+            crate::DEFAULT_ATTEMPTS
         })
     }
 }
@@ -346,7 +374,7 @@ impl Tiled {
             width,
             height,
             spacing: Spacing::Unset,
-            attempts: crate::DEFAULT_ATTEMPTS,
+            attempts: None,
             candidates: Candidates::default(),
             scheme: Scheme::default(),
             max_window_bytes: DEFAULT_MAX_WINDOW_BYTES,
@@ -365,6 +393,12 @@ impl Tiled {
     /// The minimum distance actually used, in pixels.
     pub fn radius(&self) -> f64 {
         self.radius
+    }
+
+    /// The attempts `k` the sweep runs with (the one set, else 30, or
+    /// [`EXACT_ATTEMPTS`] in exact mode).
+    pub fn attempts(&self) -> u32 {
+        self.attempts
     }
 
     /// Raster width in pixels.
@@ -402,9 +436,9 @@ impl Tiled {
         Pixels {
             rng,
             window: Window::new(self.plan, self.radius),
-            candidates: CandidateSampler::new(s.candidates, self.radius, s.attempts),
+            candidates: CandidateSampler::new(s.candidates, self.radius, self.attempts),
             ahead: OffsetBatch::new(),
-            attempts: s.attempts,
+            attempts: self.attempts,
             scheme: s.scheme,
             width: self.plan.width,
             height: self.plan.height,
