@@ -45,9 +45,9 @@ pub(crate) struct RollingGrid {
     reach: usize,
     /// The global cell row at array row `reach`.
     first: usize,
-    /// The array index of cell key 0 ([`Self::key`]), modulo 2³²:
-    /// `reach` rows and columns of padding, less the rows slid past.
-    origin: u32,
+    /// The array index of cell key 0 ([`Self::key`]), wrapping: `reach`
+    /// rows and columns of padding, less the rows slid past.
+    origin: usize,
     /// Cells per axis inside the raster.
     cells_x: usize,
     cells_y: usize,
@@ -156,21 +156,16 @@ impl RollingGrid {
         }
     }
 
-    /// Columns and array rows: the live rows and their padding, and a
-    /// third as many again, so that a copy back is needed once per third
-    /// of a window of rows: about three rows copied per row of the image
-    /// (and one filled), which is cheap next to sampling it, where
-    /// doubling would cost memory (16 MB more at 16 384 pixels wide and 4
-    /// a pixel). Half as many again cost 4.7 MB more there for no speed
-    /// that could be measured (`docs/performance-journal.md`). `None` if a
-    /// size overflows, or if the cells number 2³² or more: cell keys are
-    /// `u32` ([`Self::key`]), 64 GiB of cells.
+    /// Columns and array rows: the live rows and their padding, and half
+    /// as many again, so that a copy back is needed once per half a
+    /// window of rows: about two rows copied per row of the image, which
+    /// is cheap next to sampling it, where doubling would cost memory
+    /// (16 MB more at 16 384 pixels wide and 4 a pixel).
     fn size(cells_x: usize, live_rows: usize, reach: usize) -> Option<(usize, usize)> {
         let columns = cells_x.checked_add(reach.checked_mul(2)?)?;
         let padded = live_rows.checked_add(reach.checked_mul(2)?)?;
-        let rows = padded.checked_add(padded / 3 + 1)?;
-        (u32::try_from(columns.checked_mul(rows)?).is_ok_and(|n| n < u32::MAX))
-            .then_some((columns, rows))
+        let rows = padded.checked_add(padded / 2 + 1)?;
+        Some((columns, rows))
     }
 
     /// Heap bytes of a grid built with these sizes (cells and stencils; the
@@ -222,40 +217,27 @@ impl RollingGrid {
     }
 
     /// The key of `p`'s cell (a point inside the raster): its global cell
-    /// numbered row by row, `cy·columns + cx`, modulo 2³². Unlike an array
-    /// index it stays valid as the rows slide, so the sweep keeps it with
-    /// each active point and never locates a parent again: its seed and the
-    /// next pick's prefetch start from it.
-    ///
-    /// Modulo 2³² it is still exact: a cell's array index is its key plus
-    /// `origin` (the index of key 0, wrapping), and the sum modulo 2³²
-    /// needs only the low bits of both; the grid holds fewer than 2³²
-    /// cells ([`Self::size`]), so an index in the array is its own residue
-    /// and no two cells of the array share a key. Four bytes a queued
-    /// point instead of eight, which at 16 384 pixels wide is about
-    /// 1.5 MB of peak memory (`docs/performance-journal.md`).
+    /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
+    /// index it stays valid as the rows slide: the candidate's search finds
+    /// it for the insert, and the next pick's prefetch for that pick's
+    /// seed.
     #[inline(always)]
-    pub(crate) fn key(&self, p: &[f64; 2]) -> u32 {
+    pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
         let (cx, cy, _) = self.locate(p);
         self.key_of(cx, cy)
     }
 
     /// The key of global cell `(cx, cy)`.
     #[inline(always)]
-    fn key_of(&self, cx: usize, cy: usize) -> u32 {
-        #[expect(
-            clippy::cast_possible_truncation,
-            reason = "keys are taken modulo 2^32 (see `key`)"
-        )]
-        let key = cy.wrapping_mul(self.columns).wrapping_add(cx) as u32;
-        key
+    fn key_of(&self, cx: usize, cy: usize) -> usize {
+        cy.wrapping_mul(self.columns).wrapping_add(cx)
     }
 
-    /// The array index of the cell with key `key`, a cell the array holds
-    /// (the only ones callers ask for).
+    /// The array index of the cell with key `key` (wrapping: a cell above
+    /// the array wraps below zero, past the array's end).
     #[inline(always)]
-    fn at(&self, key: u32) -> usize {
-        key.wrapping_add(self.origin) as usize
+    fn at(&self, key: usize) -> usize {
+        key.wrapping_add(self.origin)
     }
 
     /// The global cell of a point inside the raster, and the quarter of the
@@ -271,7 +253,7 @@ impl RollingGrid {
     /// the window holds), if any: the nearest cells first, eight at a time.
     /// Also `p`'s cell key ([`Self::key`]), found on the way.
     #[inline(always)]
-    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (u32, Option<[f64; 2]>) {
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         let (cx, cy, part) = self.locate(p);
         let key = self.key_of(cx, cy);
         let base = self.at(key);
@@ -306,7 +288,7 @@ impl RollingGrid {
     /// toss the predictor loses), then those points. `key` is `p`'s cell's
     /// ([`Self::key`]).
     #[inline(always)]
-    pub(crate) fn seed(&self, key: u32, limit: usize, mut take: impl FnMut(&[f64; 2])) {
+    pub(crate) fn seed(&self, key: usize, limit: usize, mut take: impl FnMut(&[f64; 2])) {
         let base = self.at(key);
         let mut found = [FAR; SEED_MAX];
         let mut n = 0;
@@ -336,12 +318,13 @@ impl RollingGrid {
     /// its next parent anywhere along the front, whose width can put the
     /// window's live rows past the nearest caches; its candidates, up to
     /// `2r` away, search cells up to `2r` plus the reach from it, of which
-    /// the inner block (`r` plus the reach) is fetched. `key` is the
-    /// pick's cell's ([`Self::key`]).
+    /// the inner block (`r` plus the reach) is fetched. Returns `p`'s cell
+    /// key ([`Self::key`]), prefetching or not.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, key: u32) {
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        let key = self.key(p);
         if self.block.rows == 0 {
-            return;
+            return key;
         }
         let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
@@ -365,6 +348,7 @@ impl RollingGrid {
                 }
             }
         }
+        key
     }
 
     /// Hands the cells of each cell row that covers pixel row `y` to
@@ -409,7 +393,7 @@ impl RollingGrid {
     /// (storing nothing) if the cell is taken, which only rounding can
     /// cause, or lies outside the array.
     #[inline(always)]
-    pub(crate) fn insert(&mut self, p: [f64; 2], key: u32) -> bool {
+    pub(crate) fn insert(&mut self, p: [f64; 2], key: usize) -> bool {
         let index = self.at(key);
         match self.cells.get_mut(index) {
             Some(cell) if cell[0] == f64::INFINITY => {
@@ -441,17 +425,12 @@ fn runs(offsets: &[isize]) -> Vec<(isize, usize)> {
 
 /// The array index of cell key 0 when global cell row `first` sits at
 /// array row `reach`: `reach` padding columns and `reach - first` rows in,
-/// modulo 2³² (as keys are).
-fn origin(reach: usize, columns: usize, first: usize) -> u32 {
-    #[expect(
-        clippy::cast_possible_truncation,
-        reason = "taken modulo 2^32, as keys are"
-    )]
-    let origin = reach
+/// wrapping.
+fn origin(reach: usize, columns: usize, first: usize) -> usize {
+    reach
         .wrapping_sub(first)
         .wrapping_mul(columns)
-        .wrapping_add(reach) as u32;
-    origin
+        .wrapping_add(reach)
 }
 
 /// The cache lines (64 bytes, 4 cells) covering the square of cells a
@@ -497,35 +476,6 @@ mod tests {
             [(-9, 3), (-1, 1), (1, 3), (40, 1)]
         );
         assert_eq!(runs(&[]), []);
-    }
-
-    /// Keys are taken modulo 2³² (`RollingGrid::key`): far down a tall
-    /// raster, where `cy·columns` is past 2³², a point stored under its
-    /// key is found again by the conflict search and the seed, and its key
-    /// is the one `key` gives its position.
-    #[test]
-    fn keys_modulo_2_32_still_address_their_cells() {
-        let side = core::f64::consts::FRAC_1_SQRT_2;
-        let mut grid =
-            RollingGrid::new((1000, 10_000_000), 20, side, (1.0, 2, 1e-9), false).unwrap();
-        let row = 9_000_000;
-        assert!(row * grid.columns > 1 << 33, "the global cell number wraps");
-        grid.slide_to(row, 20);
-        let p = [300.3, (row as f64 + 5.5) * side];
-        let (key, hit) = grid.conflict(&p);
-        assert_eq!(hit, None, "an empty grid");
-        assert_eq!(key, grid.key(&p), "the search's key and the point's");
-        assert!(grid.insert(p, key), "stored");
-        assert!(!grid.insert(p, key), "its cell is taken");
-        let q = [p[0] + 0.5, p[1] + 0.2];
-        assert_eq!(
-            grid.conflict(&q).1,
-            Some(p),
-            "found by a neighbour's search"
-        );
-        let mut seeds = Vec::new();
-        grid.seed(grid.key(&[p[0] + side, p[1]]), 8, |s| seeds.push(*s));
-        assert_eq!(seeds, [p], "in the next cell's seed");
     }
 
     /// The seed reads its cells a run at a time: the same cells, in the

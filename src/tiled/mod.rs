@@ -45,7 +45,7 @@ use crate::vector::add;
 use core::iter::FusedIterator;
 pub use exact::ExactMethod;
 use exact::{DEFAULT_OVERSAMPLE, Exact};
-use queue::{Active, BandQueue};
+use queue::BandQueue;
 use rand::Rng;
 use window::{Window, WindowPlan};
 
@@ -268,11 +268,10 @@ impl TiledBuilder {
     /// if `k == 0`; [`Error::TooManyAttempts`] if `k` is above
     /// [`MAX_ATTEMPTS`](crate::MAX_ATTEMPTS); [`Error::WindowTooLarge`] if
     /// the window exceeds its budget.
-    /// The window's row and cell counts are bounded too (at most 65 536
-    /// cells a pixel side, fewer than 2³² grid cells: 64 GiB), so a radius
-    /// above about `1.2e8` pixels, or below about `2.5e-5`, gives
-    /// [`Error::WindowTooLarge`] with `needed: u64::MAX` whatever the
-    /// budget, even on a 1 × 1 raster.
+    /// The window's row and cell counts are bounded too, so a radius above
+    /// about `1.2e8` pixels, or below about `2.2e-5` (more than 65 536 cells
+    /// per pixel), gives [`Error::WindowTooLarge`] with `needed: u64::MAX`
+    /// whatever the budget, even on a 1 × 1 raster.
     pub fn build(self) -> Result<Tiled, Error> {
         if self.width == 0 {
             return Err(Error::EmptyRaster { axis: 0 });
@@ -467,7 +466,7 @@ pub struct Pixels<R> {
     rows_per_round: usize,
     /// Per block, the points to work in it before the current key limit,
     /// with their buckets.
-    blocks: Vec<Vec<Due>>,
+    blocks: Vec<Vec<([f64; 2], u64)>>,
     /// The blocks in the order they are worked, and which are still to be.
     order: Vec<usize>,
     pending: Vec<bool>,
@@ -482,15 +481,6 @@ pub struct Pixels<R> {
     /// Exact mode's elimination.
     exact: Option<Exact>,
     top_ups: u64,
-}
-
-/// An active point due in a block of columns, with its bucket: packed to
-/// 28 bytes, as [`Active`] is, where a tuple would pad it to 32.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, packed(4))]
-struct Due {
-    active: Active,
-    bucket: u64,
 }
 
 /// Width of the sweep's blocks of columns, in grid cells, on wide windows
@@ -608,13 +598,14 @@ impl<R: Rng> Pixels<R> {
         // it throws its candidates; it stays active until it fails.
         loop {
             let window = &self.window;
-            let Some((place, parent)) = self
+            let Some((place, parent, cell)) = self
                 .queue
-                .pick(limit, &mut self.rng, |p| window.prefetch(p.cell))
+                .pick(limit, &mut self.rng, |p| window.prefetch(p))
             else {
                 break;
             };
-            match self.spawn(&parent, (0, y), false) {
+            let cell = cell.unwrap_or_else(|| window.key(&parent));
+            match self.spawn((&parent, cell), (0, y), false) {
                 Some(child) => self.push(child),
                 None => self.queue.retire(place),
             }
@@ -637,7 +628,7 @@ impl<R: Rng> Pixels<R> {
         )]
         let count = (span / width) as usize + 1;
         let inv_width = 1.0 / width;
-        let block_of = move |p: [f64; 2]| -> usize {
+        let block_of = move |p: &[f64; 2]| -> usize {
             #[expect(
                 clippy::cast_possible_truncation,
                 clippy::cast_sign_loss,
@@ -653,8 +644,8 @@ impl<R: Rng> Pixels<R> {
         let blocks = &mut self.blocks;
         self.queue.drain_below(limit, |p, bucket| {
             any = true;
-            if let Some(list) = blocks.get_mut(block_of(p.point)) {
-                list.push(Due { active: p, bucket });
+            if let Some(list) = blocks.get_mut(block_of(&p)) {
+                list.push((p, bucket));
             }
         });
         if !any {
@@ -675,7 +666,7 @@ impl<R: Rng> Pixels<R> {
                 break;
             };
             if let Some(list) = self.blocks.get_mut(b) {
-                for &Due { active: p, bucket } in list.iter() {
+                for &(p, bucket) in list.iter() {
                     self.scratch.push_in(p, bucket);
                 }
                 list.clear();
@@ -689,17 +680,18 @@ impl<R: Rng> Pixels<R> {
             // fails.
             loop {
                 let window = &self.window;
-                let Some((place, parent)) = self
+                let Some((place, parent, cell)) = self
                     .scratch
-                    .pick(limit, &mut self.rng, |p| window.prefetch(p.cell))
+                    .pick(limit, &mut self.rng, |p| window.prefetch(p))
                 else {
                     break;
                 };
-                match self.spawn(&parent, (0, y), false) {
+                let cell = cell.unwrap_or_else(|| window.key(&parent));
+                match self.spawn((&parent, cell), (0, y), false) {
                     Some(child) => {
-                        let key = child.point[1] + self.jitter * unit(&mut self.rng);
+                        let key = child[1] + self.jitter * unit(&mut self.rng);
                         let bucket = self.queue.bucket(key);
-                        let at = block_of(child.point);
+                        let at = block_of(&child);
                         if !self.queue.starts_below(bucket, limit) {
                             self.queue.push_in(child, bucket);
                         } else if at == b {
@@ -707,10 +699,7 @@ impl<R: Rng> Pixels<R> {
                         } else if self.pending.get(at) == Some(&true)
                             && let Some(list) = self.blocks.get_mut(at)
                         {
-                            list.push(Due {
-                                active: child,
-                                bucket,
-                            });
+                            list.push((child, bucket));
                         } else {
                             self.queue.push_in(child, bucket);
                         }
@@ -734,8 +723,8 @@ impl<R: Rng> Pixels<R> {
         seeded
     }
 
-    fn push(&mut self, point: Active) {
-        let key = point.point[1] + self.jitter * unit(&mut self.rng);
+    fn push(&mut self, point: [f64; 2]) {
+        let key = point[1] + self.jitter * unit(&mut self.rng);
         self.queue.push(point, key);
     }
 
@@ -748,14 +737,11 @@ impl<R: Rng> Pixels<R> {
                 return;
             }
             let i = below(&mut self.rng, len);
-            let Some(&point) = self.window.slot(x, y).active.get(i) else {
+            let Some(&parent) = self.window.slot(x, y).active.get(i) else {
                 return;
             };
-            let parent = Active {
-                point,
-                cell: self.window.key(&point),
-            };
-            if self.spawn(&parent, (x, y), true).is_none()
+            let cell = self.window.key(&parent);
+            if self.spawn((&parent, cell), (x, y), true).is_none()
                 && let Some(slot) = self.window.slot_mut(x, y)
             {
                 slot.active.swap_remove(i);
@@ -763,11 +749,11 @@ impl<R: Rng> Pixels<R> {
         }
     }
 
-    /// Up to `k` candidates around `parent`; stores and returns the first
-    /// valid one, with its cell's key. Candidates in pixels already
-    /// emitted (before `current` in scan order), outside the raster or
-    /// below the window are refused; with `only_current`, so is any
-    /// outside the current pixel.
+    /// Up to `k` candidates around `parent`, whose cell key is `cell`;
+    /// stores and returns the first valid one. Candidates in pixels
+    /// already emitted (before `current` in scan order), outside the
+    /// raster or below the window are refused; with `only_current`, so is
+    /// any outside the current pixel.
     ///
     /// The batch sampler's loop (`sampler.rs`, `grow_cached`): offsets drawn
     /// ahead, and a [`ConflictCache`] of the parent's neighbours and of the
@@ -776,11 +762,10 @@ impl<R: Rng> Pixels<R> {
     #[inline(always)]
     fn spawn(
         &mut self,
-        &Active { point, cell }: &Active,
+        (parent, cell): (&[f64; 2], usize),
         current: (usize, usize),
         only_current: bool,
-    ) -> Option<Active> {
-        let parent = &point;
+    ) -> Option<[f64; 2]> {
         // The rectangle candidates may land in: the current pixel, or the
         // rows from the current one to the window's last (pixels before
         // `current` in the current row are never refused by it: the sweep
@@ -854,10 +839,7 @@ impl<R: Rng> Pixels<R> {
             let pixel = (c[0] as u32 as usize, c[1] as u32 as usize);
             let list = only_current || self.exact.is_some();
             if self.window.insert((c, key), pixel, (list, only_current)) {
-                return Some(Active {
-                    point: c,
-                    cell: key,
-                });
+                return Some(c);
             }
         }
         None
@@ -883,10 +865,7 @@ impl<R: Rng> Pixels<R> {
                 .insert((p, key), (x, y), (paper || self.exact.is_some(), paper))
             {
                 if self.scheme != Scheme::Paper {
-                    self.push(Active {
-                        point: p,
-                        cell: key,
-                    });
+                    self.push(p);
                 }
                 return true;
             }

@@ -19,36 +19,20 @@ use std::collections::VecDeque;
 /// Bucket height, in radii (`J = 4r` spans 16 buckets).
 pub(crate) const BUCKET: f64 = 0.25;
 
-/// An active point and the key of its grid cell (`RollingGrid::key`),
-/// kept with it so that a pick's seed and prefetch need not locate it.
-///
-/// Packed to 20 bytes (the key is a `u32`; unpacked, the point's alignment
-/// would pad it to 24): the queue's points are most of the sweep's memory
-/// beside the window's grid, and at 16 384 pixels wide the 8 bytes a point
-/// an unpacked key costs came to 2.6 MiB of peak memory, 4 bytes to about
-/// half that (`docs/performance-journal.md`). Its fields are only read by
-/// value (no references into a packed struct), and x86-64 loads unaligned
-/// doubles at full speed.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, packed(4))]
-pub(crate) struct Active {
-    pub(crate) point: [f64; 2],
-    pub(crate) cell: u32,
-}
-
 #[derive(Debug)]
 pub(crate) struct BandQueue {
     /// Bucket `i` holds the points whose key lies in
     /// `[(base + i)·h, (base + i + 1)·h)`.
-    buckets: VecDeque<Vec<Active>>,
+    buckets: VecDeque<Vec<[f64; 2]>>,
     /// The bucket number of `buckets[0]`.
     base: u64,
     height: f64,
     inv_height: f64,
     /// Emptied buckets, kept for their allocations.
-    spare: Vec<Vec<Active>>,
-    /// The next pick's bucket and index, drawn ahead.
-    next: Option<(u64, usize)>,
+    spare: Vec<Vec<[f64; 2]>>,
+    /// The next pick drawn ahead: its bucket and index, the point then at
+    /// that index and what `pick`'s `ahead` made of it.
+    next: Option<Ahead>,
 }
 
 impl BandQueue {
@@ -66,7 +50,7 @@ impl BandQueue {
     }
 
     /// Queues `point` under `key` (non-negative).
-    pub(crate) fn push(&mut self, point: Active, key: f64) {
+    pub(crate) fn push(&mut self, point: [f64; 2], key: f64) {
         self.push_in(point, self.bucket(key));
     }
 
@@ -113,7 +97,7 @@ impl BandQueue {
 
     /// Takes out every point of the buckets that start below `limit`,
     /// lowest bucket first, handing each to `take` with its bucket.
-    pub(crate) fn drain_below(&mut self, limit: f64, mut take: impl FnMut(Active, u64)) {
+    pub(crate) fn drain_below(&mut self, limit: f64, mut take: impl FnMut([f64; 2], u64)) {
         while self.buckets.front().is_some() && self.starts_below(self.base, limit) {
             if let Some(mut list) = self.buckets.pop_front() {
                 for &p in &list {
@@ -127,7 +111,7 @@ impl BandQueue {
     }
 
     /// Queues `point` in bucket `bucket`.
-    pub(crate) fn push_in(&mut self, point: Active, bucket: u64) {
+    pub(crate) fn push_in(&mut self, point: [f64; 2], bucket: u64) {
         if self.buckets.is_empty() {
             self.base = bucket;
         }
@@ -155,7 +139,9 @@ impl BandQueue {
     /// A random point of the lowest non-empty bucket, if that bucket starts
     /// below `limit`, with where it is (for [`Self::retire`]); the point
     /// stays queued. Also hands `ahead` the point the next pick will
-    /// probably take, so that its neighbourhood can be fetched meanwhile.
+    /// probably take, so that its neighbourhood can be fetched meanwhile,
+    /// and keeps what `ahead` returns (the sweep: the point's cell key):
+    /// the pick that takes that point returns it too, `None` otherwise.
     ///
     /// The next pick's index is drawn now, uniform over one more than the
     /// bucket's length, and kept if the bucket is still the front one and
@@ -167,8 +153,8 @@ impl BandQueue {
         &mut self,
         limit: f64,
         rng: &mut R,
-        ahead: impl FnOnce(&Active),
-    ) -> Option<(Place, Active)> {
+        ahead: impl FnOnce(&[f64; 2]) -> usize,
+    ) -> Option<(Place, [f64; 2], Option<usize>)> {
         loop {
             let front = self.buckets.front()?;
             if front.is_empty() {
@@ -182,21 +168,34 @@ impl BandQueue {
                 return None;
             }
             let len = front.len();
-            let index = match self.next {
-                Some((bucket, i)) if bucket == self.base && i < len => i,
-                _ => below(rng, len),
+            let (index, known) = match self.next {
+                Some(a) if a.bucket == self.base && a.index < len => (a.index, Some(a)),
+                _ => (below(rng, len), None),
             };
-            let next = below(rng, len + 1);
-            self.next = Some((self.base, next));
-            if let Some(p) = front.get(next) {
-                ahead(p);
-            }
             let point = *front.get(index)?;
+            // A retire or a push since the draw may have put another point
+            // at that index (`swap_remove`), or there was none yet.
+            let tag = known.filter(|a| a.point == point).map(|a| a.tag);
+            let next = below(rng, len + 1);
+            self.next = Some(match front.get(next) {
+                Some(&p) => Ahead {
+                    bucket: self.base,
+                    index: next,
+                    point: p,
+                    tag: ahead(&p),
+                },
+                None => Ahead {
+                    bucket: self.base,
+                    index: next,
+                    point: [f64::NAN; 2],
+                    tag: 0,
+                },
+            });
             let place = Place {
                 bucket: self.base,
                 index,
             };
-            return Some((place, point));
+            return Some((place, point, tag));
         }
     }
 
@@ -212,6 +211,17 @@ impl BandQueue {
             list.swap_remove(place.index);
         }
     }
+}
+
+/// The next pick, drawn ahead.
+#[derive(Clone, Copy, Debug)]
+struct Ahead {
+    bucket: u64,
+    index: usize,
+    /// The point at `index` when drawn (NaN if there was none: it equals
+    /// no point).
+    point: [f64; 2],
+    tag: usize,
 }
 
 /// Where a picked point sits in the queue.

@@ -395,25 +395,26 @@ impl Window {
     /// in a row at or below the current one), if any; and `p`'s cell key
     /// (`RollingGrid::key`), for [`Self::insert`].
     #[inline(always)]
-    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (u32, Option<[f64; 2]>) {
+    pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         self.grid.conflict(p)
     }
 
     /// The cell key of `p`, a point inside the raster.
-    pub(crate) fn key(&self, p: &[f64; 2]) -> u32 {
+    pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
         self.grid.key(p)
     }
 
-    /// Asks the cache for the grid cells around the cell with key `key`.
+    /// Asks the cache for the grid cells around `p` (wide windows); `p`'s
+    /// cell key.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, key: u32) {
-        self.grid.prefetch(key);
+    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
+        self.grid.prefetch(p)
     }
 
     /// Hands up to `limit` stored points around the cell with key `key`
     /// to `take`.
     #[inline(always)]
-    pub(crate) fn seed(&self, key: u32, limit: usize, take: impl FnMut(&[f64; 2])) {
+    pub(crate) fn seed(&self, key: usize, limit: usize, take: impl FnMut(&[f64; 2])) {
         self.grid.seed(key, limit, take);
     }
 
@@ -431,7 +432,7 @@ impl Window {
     /// cause; the caller treats it as a failed attempt.
     pub(crate) fn insert(
         &mut self,
-        (p, key): ([f64; 2], u32),
+        (p, key): ([f64; 2], usize),
         pixel: (usize, usize),
         (list, active): (bool, bool),
     ) -> bool {
