@@ -209,8 +209,10 @@ impl TiledBuilder {
     /// methods, left alone, leave the edge bands a few per cent sparse at
     /// small `n`; by default β comes from a table calibrated with
     /// `examples/stream.rs` so that the density's first harmonic across a
-    /// pixel vanishes. `[0.0, 0.0]` turns the correction off. Ignored
-    /// outside exact mode.
+    /// pixel vanishes, with, at small `n`, a term that favours each pixel's
+    /// top band (the rows above deplete it); setting β here replaces both,
+    /// and `[0.0, 0.0, 0.0]` turns the correction off. Ignored outside
+    /// exact mode.
     #[must_use]
     pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
         self.exact_bias = Some(beta);
