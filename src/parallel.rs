@@ -8,6 +8,8 @@
 //! can come closer than `r` without one of them having been a pre-placed
 //! point of the other's run.
 
+use crate::candidates::Candidates;
+use crate::density::expected_count;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::GridLayout;
@@ -15,6 +17,7 @@ use crate::random::{DefaultRng, seeded_rng};
 use crate::sampler::PoissonDisk;
 use core::num::NonZeroUsize;
 use core::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 /// The most slab pairs: 32 slabs, so 16 jobs a phase. More slabs are
 /// thinner, and the seams cost: at 250 000 points in 2-D, one thread runs
@@ -34,6 +37,16 @@ const MIN_SLAB_RADII: f64 = 16.0;
 /// within 1.6 % and 0.9 % of the interior's, against 58 % more with none;
 /// `examples/seams.rs`, performance journal).
 const TRIM_RADII: f64 = 2.0;
+
+/// A slab's room in the output buffer over count mode's model of its
+/// points ([`expected_count`]): the model's share plus this fraction plus
+/// [`ROOM_POINTS`]. Points past the room go to a vector of the slab's own
+/// (correct, but the memory the shared buffer saves is spent again).
+const ROOM_SLACK: f64 = 0.03;
+
+/// Points of room each slab gets beyond the model and [`ROOM_SLACK`], for
+/// small slabs, whose counts vary more.
+const ROOM_POINTS: f64 = 256.0;
 
 /// How a box is cut: `2·pairs` slabs along `axis`, slab `i` being
 /// `borders[i] <= x[axis] < borders[i + 1]`.
@@ -186,6 +199,18 @@ impl<const N: usize> PoissonDisk<N> {
         seed: u64,
         threads: NonZeroUsize,
     ) -> Result<Vec<[f64; N]>, Error> {
+        self.generate_parallel_in(seed, threads, |rooms| rooms)
+    }
+
+    /// [`generate_parallel`](Self::generate_parallel) with the slabs' rooms
+    /// in the output buffer passed through `rooms` (the identity but in
+    /// tests, which shrink them to force the spill path).
+    fn generate_parallel_in(
+        &self,
+        seed: u64,
+        threads: NonZeroUsize,
+        rooms: impl FnOnce(Vec<usize>) -> Vec<usize>,
+    ) -> Result<Vec<[f64; N]>, Error> {
         if self.max_points().is_some_and(|cap| cap != u64::MAX) {
             return Err(Error::PointCapInParallel);
         }
@@ -194,37 +219,99 @@ impl<const N: usize> PoissonDisk<N> {
         };
         let pairs = slabs.count() / 2;
         let share = self.max_grid_bytes() / pairs as u64;
+        // One buffer for every slab's points, each slab writing into a room
+        // of its own: no slab vector is freed and none copied into another,
+        // so the peak never rests on the allocator handing freed blocks
+        // back. A buffer the allocator refuses is none: every point then
+        // spills (the same points, more memory).
+        let mut rooms = rooms(self.rooms(&slabs, share));
+        rooms.resize(slabs.count(), 0);
+        let total = rooms.iter().fold(0_usize, |sum, &n| sum.saturating_add(n));
+        let mut buffer: Vec<[f64; N]> = Vec::new();
+        let rooms = if buffer.try_reserve_exact(total).is_ok() {
+            buffer.resize(total, [0.0; N]);
+            rooms
+        } else {
+            vec![0; rooms.len()]
+        };
+        let mut portions = Vec::with_capacity(slabs.count());
+        let mut rest = buffer.as_mut_slice();
+        for &room in &rooms {
+            let (portion, after) = core::mem::take(&mut rest)
+                .split_at_mut_checked(room)
+                .unwrap_or((&mut [], &mut []));
+            portions.push(Portion::new(portion));
+            rest = after;
+        }
         let mut rng = seeded_rng(seed);
-        let mut streams = Vec::with_capacity(slabs.count());
-        for _ in 0..slabs.count() {
-            streams.push(rng.clone());
+        let mut even = Vec::with_capacity(pairs);
+        let mut odd = Vec::with_capacity(pairs);
+        for (i, portion) in portions.into_iter().enumerate() {
+            let jobs = if i % 2 == 0 { &mut even } else { &mut odd };
+            jobs.push((i, rng.clone(), portion));
             rng.jump();
         }
-        let even: Vec<(usize, DefaultRng)> =
-            streams.iter().cloned().enumerate().step_by(2).collect();
-        let odd: Vec<(usize, DefaultRng)> =
-            streams.into_iter().enumerate().skip(1).step_by(2).collect();
-        let evens = run_all(&even, threads, |(i, rng)| {
-            self.even_slab(&slabs, *i, rng.clone(), share)
+        let evens = run_all(even, threads, |(i, rng, portion)| {
+            self.even_slab(&slabs, i, rng, share, portion)
         })?;
-        let odds = run_all(&odd, threads, |(i, rng)| {
-            self.odd_slab(&slabs, *i, rng.clone(), share, &evens)
+        let odds = run_all(odd, threads, |(i, rng, portion)| {
+            self.odd_slab(&slabs, i, rng, share, portion, &evens)
         })?;
-        // Joined in slab order into the first slab's vector, each slab freed
-        // once copied: the peak is about the points once, not twice.
-        let total = evens.iter().chain(&odds).map(Vec::len).sum::<usize>();
-        let mut evens = evens.into_iter();
-        let mut all = evens.next().unwrap_or_default();
-        all.reserve_exact(total - all.len());
-        for (o, e) in odds
-            .into_iter()
-            .zip(evens.chain(core::iter::once(Vec::new())))
-        {
-            all.extend_from_slice(&o);
-            drop(o);
-            all.extend_from_slice(&e);
+        let mut written = Vec::with_capacity(slabs.count());
+        let mut spills = Vec::with_capacity(slabs.count());
+        for (e, o) in evens.into_iter().zip(odds) {
+            for slab in [e, o] {
+                written.push(slab.points.len());
+                spills.push(slab.spill);
+            }
         }
-        Ok(all)
+        join(&mut buffer, &rooms, &written, spills);
+        Ok(buffer)
+    }
+
+    /// Each slab's room in the output buffer, in slab order: count mode's
+    /// model of the points of a slab of its width in the interior
+    /// (its axis taken as periodic), plus, for the two end slabs of a
+    /// bounded axis, half the extra the box's faces on that axis hold; that
+    /// plus [`ROOM_SLACK`] and [`ROOM_POINTS`]. The box and `r` only, never
+    /// the threads. At most what a slab's run can store within its
+    /// `share` of the budget (its points count against it), so the buffer
+    /// never outgrows twice the budget; a dimension without a model (past
+    /// 8-D) gets no room.
+    fn rooms(&self, slabs: &Slabs, share: u64) -> Vec<usize> {
+        let axis = slabs.axis;
+        let model = |extent: &[f64; N], periodic: &[bool; N]| {
+            expected_count(
+                extent,
+                periodic,
+                self.candidates() == Candidates::Sphere,
+                self.attempts(),
+                self.radius(),
+            )
+        };
+        let extent = self.domain().extent();
+        let periodic = self.domain().periodic();
+        let mut inner = periodic;
+        if let Some(p) = inner.get_mut(axis) {
+            *p = true;
+        }
+        // The faces' extra, shared by the end slabs; none if periodic.
+        let faces = (model(&extent, &periodic) - model(&extent, &inner)).max(0.0) / 2.0;
+        let most = share / (size_of::<[f64; N]>() as u64).max(1);
+        (0..slabs.count())
+            .map(|i| {
+                let Some((lo, hi)) = slabs.bounds(i) else {
+                    return 0;
+                };
+                let mut slab = extent;
+                if let Some(e) = slab.get_mut(axis) {
+                    *e = hi - lo;
+                }
+                let end = i == 0 || i + 1 == slabs.count();
+                let points = model(&slab, &inner) + if end { faces } else { 0.0 };
+                room(points * (1.0 + ROOM_SLACK) + ROOM_POINTS, most)
+            })
+            .collect()
     }
 
     /// A sampler like this one on `domain`, within `budget`; the sparse
@@ -249,15 +336,16 @@ impl<const N: usize> PoissonDisk<N> {
     /// any interior point's, not pressed against a wall, where a run in
     /// the slab itself puts 1.6 times the density in the half radius along
     /// its border (measured by `examples/seams.rs`).
-    fn even_slab(
+    fn even_slab<'a>(
         &self,
         slabs: &Slabs,
         i: usize,
         rng: DefaultRng,
         budget: u64,
-    ) -> Result<Vec<[f64; N]>, Error> {
+        mut portion: Portion<'a, N>,
+    ) -> Result<Written<'a, N>, Error> {
         let Some((lo, hi)) = slabs.bounds(i) else {
-            return Ok(Vec::new());
+            return Ok(portion.written());
         };
         let trim = TRIM_RADII * self.radius();
         let axis = slabs.axis;
@@ -271,9 +359,13 @@ impl<const N: usize> PoissonDisk<N> {
             ((lo - trim).max(box_lo), (hi + trim).min(box_hi))
         };
         let domain = self.along(slabs, grown_lo, grown_hi)?;
-        let mut points = self.slab_sampler(domain, budget)?.generate(rng)?;
-        points.retain(|p| p.get(axis).is_some_and(|&x| lo <= x && x < hi));
-        Ok(points)
+        let mut run = self.slab_sampler(domain, budget)?.iter(rng);
+        for p in run.by_ref() {
+            if p.get(axis).is_some_and(|&x| lo <= x && x < hi) {
+                portion.push(p);
+            }
+        }
+        run.error().map_or(Ok(portion.written()), Err)
     }
 
     /// The points of odd slab `i`, kept in the slab and grown from its
@@ -284,16 +376,17 @@ impl<const N: usize> PoissonDisk<N> {
     /// distance, exactly as the guarantee states it, which shifting the
     /// neighbour's points by the period would only approximate (`p + L`
     /// rounds).
-    fn odd_slab(
+    fn odd_slab<'a>(
         &self,
         slabs: &Slabs,
         i: usize,
         rng: DefaultRng,
         budget: u64,
-        evens: &[Vec<[f64; N]>],
-    ) -> Result<Vec<[f64; N]>, Error> {
+        mut portion: Portion<'a, N>,
+        evens: &[Written<'_, N>],
+    ) -> Result<Written<'a, N>, Error> {
         let Some((lo, hi)) = slabs.bounds(i) else {
-            return Ok(Vec::new());
+            return Ok(portion.written());
         };
         let axis = slabs.axis;
         let box_lo = *self.domain().lo().get(axis).unwrap_or(&lo);
@@ -320,15 +413,17 @@ impl<const N: usize> PoissonDisk<N> {
         let fixed: Vec<[f64; N]> = left
             .into_iter()
             .chain(right)
-            .flatten()
+            .flat_map(Written::iter)
             .filter(|p| p.get(axis).is_some_and(|&x| near(x)) && domain.contains(p))
             .copied()
             .collect();
         let inside = move |p: &[f64; N]| p.get(axis).is_some_and(|&x| lo <= x && x < hi);
         let sampler = self.slab_sampler(domain, budget)?;
         let mut run = sampler.iter_with_rng(rng, inside, &fixed)?;
-        let points: Vec<[f64; N]> = run.by_ref().collect();
-        run.error().map_or(Ok(points), Err)
+        for p in run.by_ref() {
+            portion.push(p);
+        }
+        run.error().map_or(Ok(portion.written()), Err)
     }
 
     /// The box with `lo <= x < hi` along the slab axis, bounded there.
@@ -347,26 +442,132 @@ impl<const N: usize> PoissonDisk<N> {
     }
 }
 
+/// `points` rounded up to a whole count, at most `most`; no room for a
+/// count the model could not give (NaN past 8-D).
+fn room(points: f64, most: u64) -> usize {
+    #[expect(clippy::cast_precision_loss, reason = "a bound, rounded down is fine")]
+    let points = points.min(most as f64);
+    if points.is_finite() && points >= 0.0 {
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "finite, in 0..=most: `as` saturates at usize::MAX in any case"
+        )]
+        let whole = points.ceil() as usize;
+        whole
+    } else {
+        0
+    }
+}
+
+/// A slab's room in the output buffer, written in generation order; the
+/// points past its end go to `spill`, in order.
+#[derive(Debug)]
+struct Portion<'a, const N: usize> {
+    room: &'a mut [[f64; N]],
+    len: usize,
+    spill: Vec<[f64; N]>,
+}
+
+impl<'a, const N: usize> Portion<'a, N> {
+    fn new(room: &'a mut [[f64; N]]) -> Self {
+        Self {
+            room,
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, p: [f64; N]) {
+        if let Some(slot) = self.room.get_mut(self.len) {
+            *slot = p;
+            self.len += 1;
+        } else {
+            self.spill.push(p);
+        }
+    }
+
+    /// The points written, read-only from now on.
+    fn written(self) -> Written<'a, N> {
+        let room: &'a [[f64; N]] = self.room;
+        Written {
+            points: room.get(..self.len).unwrap_or_default(),
+            spill: self.spill,
+        }
+    }
+}
+
+/// A slab's points: the written part of its room, then its spill.
+#[derive(Debug)]
+struct Written<'a, const N: usize> {
+    points: &'a [[f64; N]],
+    spill: Vec<[f64; N]>,
+}
+
+impl<const N: usize> Written<'_, N> {
+    /// The slab's points in generation order.
+    fn iter(&self) -> impl Iterator<Item = &[f64; N]> {
+        self.points.iter().chain(&self.spill)
+    }
+}
+
+/// Turns `buffer`, cut into consecutive rooms of `rooms[i]` values of which
+/// the first `written[i]` are slab `i`'s, into the slabs' values in order,
+/// each slab's `spills[i]` after its written ones. The written parts move
+/// down with `copy_within` (never to a higher place, so no page of the
+/// buffer is touched that was not already), then the spills, if any, are
+/// inserted from the last slab to the first (a rare path, where the model
+/// fell short). A `written[i]` over `rooms[i]` is taken as `rooms[i]`.
+fn join<T: Copy>(buffer: &mut Vec<T>, rooms: &[usize], written: &[usize], spills: Vec<Vec<T>>) {
+    let mut start = 0_usize;
+    let mut end = 0_usize;
+    let mut ends = Vec::with_capacity(rooms.len());
+    for (&room, &len) in rooms.iter().zip(written) {
+        let len = len.min(room);
+        let from = start..start.saturating_add(len);
+        if from.end <= buffer.len() {
+            buffer.copy_within(from, end);
+            end += len;
+        }
+        ends.push(end);
+        start = start.saturating_add(room);
+    }
+    buffer.truncate(end);
+    for (at, spill) in ends.into_iter().zip(spills).rev() {
+        if !spill.is_empty() {
+            buffer.splice(at..at, spill);
+        }
+    }
+}
+
 /// `job` for each of `jobs`, on up to `threads` threads (the calling one
 /// among them), the results in the order of `jobs`, or the error of the
 /// first job (in that order) that failed. Jobs are handed out in order, so
 /// every job before a failed one has been started and runs to its end:
-/// which error comes back does not depend on the threads either.
-fn run_all<I: Sync, T: Send>(
-    jobs: &[I],
+/// which error comes back does not depend on the threads either. Each job
+/// is moved to the thread that takes it (a lock per job, taken once).
+fn run_all<I: Send, T: Send>(
+    jobs: Vec<I>,
     threads: NonZeroUsize,
-    job: impl Fn(&I) -> Result<T, Error> + Sync,
+    job: impl Fn(I) -> Result<T, Error> + Sync,
 ) -> Result<Vec<T>, Error> {
+    let count = jobs.len();
+    let jobs: Vec<Mutex<Option<I>>> = jobs.into_iter().map(|j| Mutex::new(Some(j))).collect();
     let next = AtomicUsize::new(0);
     let failed = AtomicUsize::new(usize::MAX);
     let work = || {
         let mut done = Vec::new();
         loop {
             let index = next.fetch_add(1, Ordering::Relaxed);
-            let Some(input) = jobs.get(index) else { break };
+            let Some(slot) = jobs.get(index) else { break };
             if index > failed.load(Ordering::Relaxed) {
                 break;
             }
+            // Each index is handed out once, so the job is there; the lock
+            // is never held across anything that can panic.
+            let Some(input) = slot.lock().ok().and_then(|mut s| s.take()) else {
+                break;
+            };
             let result = job(input);
             if result.is_err() {
                 failed.fetch_min(index, Ordering::Relaxed);
@@ -375,7 +576,7 @@ fn run_all<I: Sync, T: Send>(
         }
         done
     };
-    let helpers = threads.get().min(jobs.len()).saturating_sub(1);
+    let helpers = threads.get().min(count).saturating_sub(1);
     let mut done = std::thread::scope(|scope| {
         // A thread the system refuses is one fewer helper, not an error.
         let handles: Vec<_> = (0..helpers)
