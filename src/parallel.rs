@@ -443,21 +443,19 @@ impl<const N: usize> PoissonDisk<N> {
 }
 
 /// `points` rounded up to a whole count, at most `most`; no room for a
-/// count the model could not give (NaN past 8-D).
+/// count the model could not give (NaN past 8-D, or infinite).
 fn room(points: f64, most: u64) -> usize {
-    #[expect(clippy::cast_precision_loss, reason = "a bound, rounded down is fine")]
-    let points = points.min(most as f64);
-    if points.is_finite() && points >= 0.0 {
-        #[expect(
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss,
-            reason = "finite, in 0..=most: `as` saturates at usize::MAX in any case"
-        )]
-        let whole = points.ceil() as usize;
-        whole
-    } else {
-        0
+    if !(points.is_finite() && points >= 0.0) {
+        return 0;
     }
+    let points = points.min(most as f64).ceil();
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "finite, in 0..=most (`as` saturates in any case)"
+    )]
+    let whole = points as usize;
+    whole
 }
 
 /// A slab's room in the output buffer, written in generation order; the
@@ -615,5 +613,118 @@ mod tests {
         // Borders far from zero that rounding would squeeze: one slab.
         let far = Domain::new([1e15], [1e15 + 0.25]).unwrap();
         assert!(Slabs::plan(&far, 0.25 / 1e6).is_none(), "rounded borders");
+    }
+
+    /// Every small shape of rooms, written parts and spills, against the
+    /// slabs' values simply concatenated: a room's unwritten tail never
+    /// shows, and spills come after their own slab's written values.
+    #[test]
+    fn the_join_is_the_concatenation() {
+        // (room, written) with written <= room, and spill lengths.
+        let shapes: Vec<(usize, usize, usize)> = (0..3)
+            .flat_map(|room| (0..=room).flat_map(move |w| (0..3).map(move |s| (room, w, s))))
+            .collect();
+        for a in &shapes {
+            for b in &shapes {
+                for c in &shapes {
+                    let slabs = [a, b, c];
+                    let mut buffer = Vec::new();
+                    let mut expected = Vec::new();
+                    let mut spills = Vec::new();
+                    for (i, &&(room, written, spill)) in slabs.iter().enumerate() {
+                        let slab = 100 * (i + 1);
+                        // Written values, then the room's unwritten tail.
+                        buffer.extend(
+                            (0..room).map(|k| if k < written { slab + k } else { usize::MAX }),
+                        );
+                        let spilled: Vec<usize> = (0..spill).map(|k| slab + 50 + k).collect();
+                        expected.extend((0..written).map(|k| slab + k));
+                        expected.extend(&spilled);
+                        spills.push(spilled);
+                    }
+                    let rooms: Vec<usize> = slabs.iter().map(|s| s.0).collect();
+                    let written: Vec<usize> = slabs.iter().map(|s| s.1).collect();
+                    join(&mut buffer, &rooms, &written, spills);
+                    assert_eq!(buffer, expected, "slabs {slabs:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rooms_are_whole_counts_within_the_bound() {
+        assert_eq!(room(10.2, 100), 11, "rounded up");
+        assert_eq!(room(1e30, 100), 100, "at most the bound");
+        assert_eq!(room(f64::NAN, 100), 0, "no model: no room");
+        assert_eq!(room(-3.0, 100), 0, "never negative");
+        assert_eq!(room(5.0, 0), 0, "no budget: no room");
+    }
+
+    /// The sampler of `extent` at `r`, periodic where asked.
+    fn sampler<const N: usize>(extent: [f64; N], r: f64, periodic: [bool; N]) -> PoissonDisk<N> {
+        let domain = Domain::from_extent(extent).unwrap().with_periodic(periodic);
+        PoissonDisk::new(domain, r).unwrap()
+    }
+
+    /// The model gives every slab room for all its points, so that the
+    /// spill path stays rare: 2-D and 3-D, bounded and periodic, many slabs
+    /// and two, long thin boxes.
+    #[test]
+    fn the_rooms_hold_each_slabs_points() {
+        fn check<const N: usize>(s: &PoissonDisk<N>, seed: u64) {
+            let slabs = Slabs::plan(s.domain(), s.radius()).unwrap();
+            let share = s.max_grid_bytes() / (slabs.count() / 2) as u64;
+            let rooms = s.rooms(&slabs, share);
+            let points = s.generate_parallel(seed, NonZeroUsize::MIN).unwrap();
+            for (i, &room) in rooms.iter().enumerate() {
+                let (lo, hi) = slabs.bounds(i).unwrap();
+                let n = points
+                    .iter()
+                    .filter(|p| (lo..hi).contains(&p[slabs.axis]))
+                    .count();
+                assert!(n <= room, "{N}-D slab {i}: {n} points, room {room}");
+                assert!(
+                    room as f64 <= n as f64 * 1.1 + ROOM_POINTS + 1.0,
+                    "{N}-D slab {i}: room {room} for {n} points"
+                );
+            }
+        }
+        for seed in 1..=2 {
+            check(&sampler([1.0, 1.0], 0.003, [false; 2]), seed);
+            check(&sampler([1.0, 1.0], 0.003, [true; 2]), seed);
+            check(&sampler([1.0, 0.3], 0.002, [false, true]), seed);
+            check(&sampler([1.0, 0.2, 0.2], 0.01, [false; 3]), seed);
+            check(&sampler([0.2, 1.0, 0.2], 0.01, [true; 3]), seed);
+        }
+    }
+
+    /// Rooms too small (a third of the model's, none at all, or none for
+    /// every other slab) send points down the spill path: the points and
+    /// their order stay those of the rooms the model gives, on one thread
+    /// and two.
+    #[test]
+    fn spilled_points_keep_their_place() {
+        fn check<const N: usize>(s: &PoissonDisk<N>, seed: u64) {
+            let expected = s.generate_parallel(seed, NonZeroUsize::MIN).unwrap();
+            let shrinks: [fn(Vec<usize>) -> Vec<usize>; 4] = [
+                |rooms| rooms.into_iter().map(|n| n / 3).collect(),
+                |rooms| vec![0; rooms.len()],
+                |rooms| {
+                    let keep = |(i, n): (usize, usize)| if i % 2 == 0 { 0 } else { n };
+                    rooms.into_iter().enumerate().map(keep).collect()
+                },
+                |rooms| rooms.into_iter().map(|n| n / 2 + 1).rev().collect(),
+            ];
+            for (k, shrink) in shrinks.into_iter().enumerate() {
+                for t in [1, 2] {
+                    let threads = NonZeroUsize::new(t).unwrap();
+                    let points = s.generate_parallel_in(seed, threads, shrink).unwrap();
+                    assert!(points == expected, "{N}-D shrink {k}, {t} threads");
+                }
+            }
+        }
+        check(&sampler([1.0, 0.4], 0.004, [false; 2]), 3);
+        check(&sampler([1.0, 0.4], 0.004, [true; 2]), 4);
+        check(&sampler([1.0, 0.1, 0.1], 0.01, [true, false, false]), 5);
     }
 }
