@@ -725,9 +725,10 @@ mod tests {
         PoissonDisk::new(domain, r).unwrap()
     }
 
-    /// The model gives every slab room for all its points, so that the
-    /// spill path stays rare: 2-D and 3-D, bounded and periodic, many slabs
-    /// and two, long thin boxes.
+    /// The model with its slack alone, without the extra [`ROOM_POINTS`],
+    /// gives every slab of a few thousand points room for them all, so that
+    /// the spill path stays rare, and not much more: 2-D and 3-D, bounded
+    /// and periodic.
     #[test]
     fn the_rooms_hold_each_slabs_points() {
         fn check<const N: usize>(s: &PoissonDisk<N>, seed: u64) {
@@ -741,20 +742,20 @@ mod tests {
                     .iter()
                     .filter(|p| (lo..hi).contains(&p[slabs.axis]))
                     .count();
-                assert!(n <= room, "{N}-D slab {i}: {n} points, room {room}");
+                let model = room as f64 - ROOM_POINTS;
+                assert!(n as f64 <= model, "{N}-D slab {i}: {n} points, room {room}");
                 assert!(
-                    room as f64 <= n as f64 * 1.1 + ROOM_POINTS + 1.0,
+                    model <= n as f64 * 1.08,
                     "{N}-D slab {i}: room {room} for {n} points"
                 );
             }
         }
-        for seed in 1..=2 {
-            check(&sampler([1.0, 1.0], 0.003, [false; 2]), seed);
-            check(&sampler([1.0, 1.0], 0.003, [true; 2]), seed);
-            check(&sampler([1.0, 0.3], 0.002, [false, true]), seed);
-            check(&sampler([1.0, 0.2, 0.2], 0.01, [false; 3]), seed);
-            check(&sampler([0.2, 1.0, 0.2], 0.01, [true; 3]), seed);
-        }
+        // Seed 1; seeds 1 to 40 pass (checked once, in release).
+        // 8 slabs of about 2 400 points; 4 of about 2 400.
+        check(&sampler([1.0, 0.5], 0.004, [false; 2]), 1);
+        check(&sampler([1.0, 0.5], 0.004, [true; 2]), 1);
+        check(&sampler([1.0, 0.15, 0.15], 0.012, [false; 3]), 1);
+        check(&sampler([0.15, 1.0, 0.15], 0.012, [true; 3]), 1);
     }
 
     /// Rooms too small (a third of the model's, none at all, or none for
@@ -782,8 +783,8 @@ mod tests {
                 }
             }
         }
-        check(&sampler([1.0, 0.4], 0.004, [false; 2]), 3);
-        check(&sampler([1.0, 0.4], 0.004, [true; 2]), 4);
-        check(&sampler([1.0, 0.1, 0.1], 0.01, [true, false, false]), 5);
+        check(&sampler([1.0, 0.05], 0.004, [false; 2]), 3);
+        check(&sampler([1.0, 0.05], 0.004, [true; 2]), 4);
+        check(&sampler([1.0, 0.04, 0.04], 0.01, [true, false, false]), 5);
     }
 }
