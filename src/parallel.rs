@@ -244,7 +244,7 @@ impl<const N: usize> PoissonDisk<N> {
         // One buffer for every slab's points, each slab writing into a room
         // of its own: no slab vector is freed and none copied into another,
         // so the peak never rests on the allocator handing freed blocks
-        // back. A buffer the allocator refuses is none: every point then
+        // back. Rooms past what a `Vec` can hold are none: every point then
         // spills (the same points, more memory).
         let mut rooms = rooms(self.rooms(&slabs, share));
         rooms.resize(slabs.count(), 0);
@@ -357,10 +357,11 @@ impl<const N: usize> PoissonDisk<N> {
 
     /// The points of even slab `i`, written into `portion` as they come: an
     /// ordinary run in the slab grown by [`TRIM_RADII`] on each side (not
-    /// past a bounded box's faces), those outside the slab dropped. The points near its borders are then like
-    /// any interior point's, not pressed against a wall, where a run in
-    /// the slab itself puts 1.6 times the density in the half radius along
-    /// its border (measured by `examples/seams.rs`).
+    /// past a bounded box's faces), those outside the slab dropped. The
+    /// points near its borders are then like any interior point's, not
+    /// pressed against a wall, where a run in the slab itself puts 1.6
+    /// times the density in the half radius along its border (measured by
+    /// `examples/seams.rs`).
     fn even_slab<'a>(
         &self,
         slabs: &Slabs,
@@ -395,13 +396,12 @@ impl<const N: usize> PoissonDisk<N> {
 
     /// The points of odd slab `i`, written into `portion` as they come,
     /// kept in the slab and grown from its neighbours' points within the
-    /// margin (pre-placed). Its domain is
-    /// the slab grown by the margin (cut at a bounded box's faces), and,
-    /// for the last slab on a periodic axis, the whole box: its neighbour
-    /// across the wrap is then measured with the box's own periodic
-    /// distance, exactly as the guarantee states it, which shifting the
-    /// neighbour's points by the period would only approximate (`p + L`
-    /// rounds).
+    /// margin (pre-placed). Its domain is the slab grown by the margin (cut
+    /// at a bounded box's faces), and, for the last slab on a periodic
+    /// axis, the whole box: its neighbour across the wrap is then measured
+    /// with the box's own periodic distance, exactly as the guarantee
+    /// states it, which shifting the neighbour's points by the period would
+    /// only approximate (`p + L` rounds).
     fn odd_slab<'a>(
         &self,
         slabs: &Slabs,
