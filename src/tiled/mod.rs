@@ -40,7 +40,7 @@ use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
-use crate::sampler::check_radius_and_attempts;
+use crate::sampler::{DEFAULT_ATTEMPTS, check_radius_and_attempts};
 use crate::vector::add;
 use core::iter::FusedIterator;
 pub use exact::EXACT_ATTEMPTS;
@@ -347,7 +347,7 @@ impl TiledBuilder {
         self.attempts.unwrap_or(if self.exact.is_some() {
             EXACT_ATTEMPTS
         } else {
-            crate::DEFAULT_ATTEMPTS
+            DEFAULT_ATTEMPTS
         })
     }
 }
