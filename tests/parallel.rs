@@ -39,7 +39,15 @@ fn sampler<const N: usize>(width: f64, r: f64, periodic: u8) -> PoissonDisk<N> {
 }
 
 /// The parallel set for `seed` passes the oracle, lies in the box, and has
-/// about as many points as one run (within 10 %: these sets are small).
+/// about as many points as one run. The two are different random sets,
+/// whose counts spread: 4-D sets in a box two radii thick (`r = 0.03`,
+/// periodic along axis 0) held 218 to 242 points over seeds 1 to 8, one
+/// run each, a standard deviation of 3.5 %, about `0.53/√n` at `n`
+/// points; the ratio of two such counts spreads `√2` times that. So the
+/// bound is about five of the ratio's deviations, `4/√n`, plus 3 % for
+/// the seams (a flat 10 % failed there, 259 points against 230). A lost
+/// slab (half the points or fewer) still falls outside wherever a set
+/// holds more than about 100 points, as most cases here do.
 fn check_guarantee<const N: usize>(sampler: &PoissonDisk<N>, seed: u64, t: usize) {
     let d = sampler.domain();
     let r = sampler.radius();
@@ -56,9 +64,10 @@ fn check_guarantee<const N: usize>(sampler: &PoissonDisk<N>, seed: u64, t: usize
     }
     let serial = sampler.generate_seeded(seed).expect("serial run").len();
     let ratio = points.len() as f64 / serial as f64;
+    let bound = 0.03 + 4.0 / (serial as f64).sqrt();
     assert!(
-        (0.9..1.1).contains(&ratio),
-        "{ctx}: {} points, one run {serial}",
+        (ratio - 1.0).abs() < bound,
+        "{ctx}: {} points, one run {serial} (bound {bound:.3})",
         points.len()
     );
 }
