@@ -23,6 +23,7 @@ mod textbook;
 use crate::common::peak_rss_mib;
 use bridson::{Candidates, Domain, GridLayout, PoissonDisk, relative_radius, seeded_rng};
 use clap::Parser;
+use std::num::NonZeroUsize;
 use std::process::{Command, ExitCode};
 use std::time::Instant;
 
@@ -53,6 +54,9 @@ struct Case {
 enum What {
     Textbook,
     Library(Candidates, GridLayout),
+    /// `generate_parallel` on this many threads (annulus, automatic
+    /// layout): not the same points as one run, the same statistics.
+    Parallel(usize),
 }
 
 const CASES: &[Case] = &[
@@ -75,6 +79,12 @@ const CASES: &[Case] = &[
         what: What::Library(Candidates::Sphere, GridLayout::Auto),
     },
     Case {
+        name: "2d-annulus-2-threads",
+        dim: 2,
+        radius: 0.000785,
+        what: What::Parallel(2),
+    },
+    Case {
         name: "3d-textbook",
         dim: 3,
         radius: 0.00835,
@@ -93,16 +103,22 @@ const CASES: &[Case] = &[
         what: What::Library(Candidates::Sphere, GridLayout::Auto),
     },
     Case {
+        name: "3d-annulus-2-threads",
+        dim: 3,
+        radius: 0.00835,
+        what: What::Parallel(2),
+    },
+    Case {
         name: "4d-annulus",
         dim: 4,
         radius: 0.0418,
         what: What::Library(Candidates::Annulus, GridLayout::Auto),
     },
     Case {
-        name: "4d-annulus-sparse",
+        name: "4d-annulus-dense",
         dim: 4,
         radius: 0.0418,
-        what: What::Library(Candidates::Annulus, GridLayout::Sparse),
+        what: What::Library(Candidates::Annulus, GridLayout::Dense),
     },
     Case {
         name: "4d-sphere",
@@ -143,6 +159,18 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
                 .build()
                 .map_err(|e| e.to_string())?;
             sampler.iter_seeded(SEED).count()
+        }
+        What::Parallel(threads) => {
+            let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;
+            let sampler = PoissonDisk::builder(domain, case.radius)
+                .attempts(K)
+                .build()
+                .map_err(|e| e.to_string())?;
+            let threads = NonZeroUsize::new(threads).ok_or("no threads")?;
+            sampler
+                .generate_parallel(SEED, threads)
+                .map_err(|e| e.to_string())?
+                .len()
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -185,7 +213,7 @@ fn main() -> ExitCode {
         "k = {K}, seed {SEED}, unit box, median of {runs} interleaved runs, one process per run"
     );
     println!(
-        "{:<18} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9} {:>9}",
+        "{:<21} {:>9} {:>9} {:>10} {:>7} {:>10} {:>9} {:>9}",
         "case", "points", "seconds", "Mpoints/s", "rho", "peak MiB", "vs text", "paired"
     );
     let cases: Vec<&Case> = CASES
@@ -241,7 +269,7 @@ fn main() -> ExitCode {
             _ => ("-".into(), "-".into()),
         };
         println!(
-            "{:<18} {:>9} {:>9.3} {:>10.3} {:>7.4} {:>10.1} {:>9} {:>9}",
+            "{:<21} {:>9} {:>9.3} {:>10.3} {:>7.4} {:>10.1} {:>9} {:>9}",
             case.name,
             count,
             seconds,

@@ -219,7 +219,7 @@
 //!   feature).
 //!
 //! # Performance
-//! Up to 4-D the dense grid has cells of side `r/√N`, each holding the index
+//! Up to 3-D the dense grid has cells of side `r/√N`, each holding the index
 //! of at most one point, and checks a precomputed, nearest-first list of the
 //! neighbour cells within reach of the half-cell the candidate lies in. In
 //! 3-D the cells are bytes in bricks of 4×4×4, each brick storing its own
@@ -231,9 +231,11 @@
 //! pick is drawn two picks early, so that its neighbourhood is fetched from
 //! memory while earlier picks run (a cache hint), and on Linux the grid asks
 //! for transparent huge pages (a paging hint): the crate's two `unsafe`
-//! blocks. From 5-D up (or when the dense grid, full, would exceed the
-//! memory budget) a sparse hash grid is used, whose memory grows with the
-//! number of points. `README.md` has measured throughput against a textbook
+//! blocks. From 4-D up (or when the dense grid, full, would exceed the
+//! memory budget) a sparse grid is used, whose memory grows with the
+//! number of points; its search walks the cells within reach by branch and
+//! bound, nearest first, where the dense grid's stencil would check 504
+//! cells in 4-D. `README.md` has measured throughput against a textbook
 //! implementation.
 #![doc(test(attr(deny(warnings))))]
 // No panics on user input: library code neither unwraps nor indexes
