@@ -10,9 +10,10 @@
 //!   points included), so that a search's cache lines are few and known
 //!   from its cell. Used for [`GridLayout::Dense`] in 3-D wherever it fits
 //!   the budget, the `u32` grid otherwise.
-//! - [`sparse::Sparse`]: a hash map from cells of side `≈ r` to the points
-//!   in them. Memory ∝ number of points, whatever the box. Chosen from 5-D
-//!   up, or when the dense grid would not fit the budget.
+//! - [`sparse::Sparse`]: a hash map (or an array of heads) from cells of
+//!   side `≈ r` to the points in them. Memory ∝ number of points, whatever
+//!   the box. Chosen by [`GridLayout::Auto`] from 4-D up, or when the dense
+//!   grid would not fit the budget.
 //!
 //! # Why the search reach is never a fixed ±2 cells
 //! A point within `r` of a candidate can lie up to `ceil(r / side)` cells
