@@ -129,9 +129,23 @@ pub enum ExactMethod {
     Random,
 }
 
-/// The edge correction `[βx, βy, γ, δ]` (see [`Exact::edge_factor`]) at
+/// The edge correction `[βx, βy, γ, δ, ε]` (see [`Exact::edge_factor`]) at
 /// the default oversampling and `k` ([`DEFAULT_OVERSAMPLE`],
-/// [`EXACT_ATTEMPTS`]). `δ` lifts the top band, which the rows above
+/// [`EXACT_ATTEMPTS`]). `ε` (2026-11-24, eighth session) cancels a
+/// left-right tilt at `n = 4` that only rasters of 10⁶ pixels resolve: a
+/// short pixel is mended left to right, its darts free to take points
+/// from the unsettled pixels on its right, not the settled ones on its
+/// left, so the left half of each pixel kept less (the in-pixel first
+/// harmonic's `sin` term in `x` −0.0016 to −0.0021 at 1024², seeds 1 to
+/// 4, both methods; pixel-frequency power 2.7–4.9 in `x` where 3 is the
+/// goal). Linear in `ε`: at `ε = −0.05` the term was +0.0059 to +0.0061
+/// (elimination) and +0.0029 to +0.0030 (random dropping), seeds 1 and
+/// 2, so `ε = −0.012` and `−0.019` zero it; at `n = 8` (724²) the term
+/// was 0.0000 and +0.0001 already, so `ε` falls to 0 there. Afterwards,
+/// 1024², seeds 1 to 4: the `sin` term within ±0.0006, power in `x` at
+/// most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
+/// at `n = 16` were set again from 512² (4 M points; they had left power
+/// 17.7–22.6 in `y` at 1024²), the same way. `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
 /// final points): at `n = 4` it was 0.93–0.94 of the interior without it
 /// (elimination; random dropping 0.95–0.96). It was set by hand, trying
@@ -153,19 +167,19 @@ pub enum ExactMethod {
 /// settled and the row below oversampled. Other oversamplings and `k`
 /// keep these values, which then fit less well
 /// (`docs/images/exact-tradeoff.png`).
-fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 4] {
-    let table: [(f64, [f64; 4]); 4] = match method {
+fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
+    let table: [(f64, [f64; 5]); 4] = match method {
         ExactMethod::Eliminate => [
-            (4.0, [0.193, 0.078, -0.063, 0.2]),
-            (8.0, [0.113, 0.072, -0.007, 0.1]),
-            (16.0, [0.072, 0.077, 0.008, 0.0]),
-            (64.0, [0.007, 0.034, 0.017, 0.0]),
+            (4.0, [0.193, 0.078, -0.063, 0.2, -0.012]),
+            (8.0, [0.113, 0.072, -0.007, 0.1, 0.0]),
+            (16.0, [0.072, 0.077, 0.008, 0.0, 0.0]),
+            (64.0, [0.007, 0.034, 0.017, 0.0, 0.0]),
         ],
         ExactMethod::Random => [
-            (4.0, [0.314, 0.138, -0.074, 0.2]),
-            (8.0, [0.150, 0.059, -0.008, 0.1]),
-            (16.0, [0.048, 0.038, -0.026, 0.0]),
-            (64.0, [0.0, 0.0, 0.0, 0.0]),
+            (4.0, [0.314, 0.138, -0.074, 0.2, -0.019]),
+            (8.0, [0.150, 0.059, -0.008, 0.1, 0.0]),
+            (16.0, [0.048, 0.053, -0.002, 0.0, 0.0]),
+            (64.0, [0.0, 0.0, 0.0, 0.0, 0.0]),
         ],
     };
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
@@ -264,6 +278,8 @@ pub(crate) struct Exact {
     bias: [f64; 3],
     /// Its `δ`: 0 when the caller set the correction.
     top: f64,
+    /// Its `ε`: 0 when the caller set the correction.
+    side: f64,
     /// `2rₑ`: the reach of the elimination weight, and its inverse.
     reach: f64,
     inv_reach: f64,
@@ -330,11 +346,11 @@ impl Exact {
     /// Settings for `n` points per pixel, thinned by `method` from a sweep
     /// of radius `radius`.
     pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
-        let (bias, top) = match bias {
-            Some(b) => (b, 0.0),
+        let (bias, top, side) = match bias {
+            Some(b) => (b, 0.0, 0.0),
             None => {
-                let [bx, by, g, d] = calibrated_bias(method, n);
-                ([bx, by, g], d)
+                let [bx, by, g, d, e] = calibrated_bias(method, n);
+                ([bx, by, g], d, e)
             }
         };
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
@@ -369,6 +385,7 @@ impl Exact {
             method,
             bias,
             top,
+            side,
             reach,
             inv_reach: 1.0 / reach,
             radius_squared: radius * radius,
@@ -399,12 +416,12 @@ impl Exact {
     }
 
     /// How readily point `i` is dropped for where it lies in its pixel,
-    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v)`, with
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`, with
     /// `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
     /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
     /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
-    /// keep points near the edges, a positive γ keeps them near the bottom
-    /// and a positive δ near the top.
+    /// keep points near the edges, a positive γ keeps them near the bottom,
+    /// a positive δ near the top and a negative ε in the left half.
     fn edge_factor(&self, i: usize) -> f64 {
         let Some(p) = self.points.get(i) else {
             return 1.0;
@@ -413,6 +430,7 @@ impl Exact {
             let f = t - t.floor();
             (2.0 * f - 1.0) * (2.0 * f - 1.0) - 1.0 / 3.0
         };
+        let u = p[0] - p[0].floor();
         let v = p[1] - p[1].floor();
         // The top band's ramp, minus its mean over the pixel.
         let t = (1.0 - v / TOP_BAND).max(0.0) - TOP_BAND / 2.0;
@@ -420,11 +438,12 @@ impl Exact {
             - self.bias[1] * h(p[1])
             - self.bias[2] * (2.0 * v - 1.0)
             - self.top * t
+            - self.side * (2.0 * u - 1.0)
     }
 
     /// Whether [`Self::edge_factor`] can differ from 1.
     fn corrects(&self) -> bool {
-        self.bias != [0.0; 3] || self.top != 0.0
+        self.bias != [0.0; 3] || self.top != 0.0 || self.side != 0.0
     }
 
     fn weight_of(&self, d2: f64) -> f64 {

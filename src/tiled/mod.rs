@@ -210,9 +210,10 @@ impl TiledBuilder {
     /// small `n`; by default β comes from a table calibrated with
     /// `examples/stream.rs` so that the density's first harmonic across a
     /// pixel vanishes, with, at small `n`, a term that favours each pixel's
-    /// top band (the rows above deplete it); setting β here replaces both,
-    /// and `[0.0, 0.0, 0.0]` turns the correction off. Ignored outside
-    /// exact mode.
+    /// top band (the rows above deplete it) and one that favours its left
+    /// half (short pixels are mended left to right); setting β here
+    /// replaces all of them, and `[0.0, 0.0, 0.0]` turns the correction
+    /// off. Ignored outside exact mode.
     #[must_use]
     pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
         self.exact_bias = Some(beta);
