@@ -146,7 +146,9 @@ pub enum ExactMethod {
 /// most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
 /// at `n = 16` were set again from 512² (4 M points; they had left power
 /// 17.7–22.6 in `y` at 1024²), and its `βx` and `βy` at `n = 8` from 1024²
-/// (power 2.97–4.45 in `x` there), the same way. `δ` lifts the top band, which the rows above
+/// (power 2.97–4.45 in `x` there), the same way.
+///
+/// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
 /// final points): at `n = 4` it was 0.93–0.94 of the interior without it
 /// (elimination; random dropping 0.95–0.96). It was set by hand, trying
@@ -417,8 +419,8 @@ impl Exact {
     }
 
     /// How readily point `i` is dropped for where it lies in its pixel,
-    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`, with
-    /// `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`,
+    /// with `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
     /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
     /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
     /// keep points near the edges, a positive γ keeps them near the bottom,
