@@ -141,6 +141,21 @@ fn run_case(case: &Case) -> Result<(usize, f64, f64), String> {
     }
 }
 
+/// The library's sampler of the unit box at `radius` and `k = K`.
+fn sampler<const N: usize>(
+    radius: f64,
+    candidates: Candidates,
+    layout: GridLayout,
+) -> Result<PoissonDisk<N>, String> {
+    let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;
+    PoissonDisk::builder(domain, radius)
+        .attempts(K)
+        .layout(layout)
+        .candidates(candidates)
+        .build()
+        .map_err(|e| e.to_string())
+}
+
 fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
     let start = Instant::now();
     let count = match case.what {
@@ -150,24 +165,12 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
                 .ok_or("the textbook's grid is too large")?
                 .len()
         }
-        What::Library(candidates, layout) => {
-            let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;
-            let sampler = PoissonDisk::builder(domain, case.radius)
-                .attempts(K)
-                .layout(layout)
-                .candidates(candidates)
-                .build()
-                .map_err(|e| e.to_string())?;
-            sampler.iter_seeded(SEED).count()
-        }
+        What::Library(candidates, layout) => sampler::<N>(case.radius, candidates, layout)?
+            .iter_seeded(SEED)
+            .count(),
         What::Parallel(threads) => {
-            let domain = Domain::<N>::from_extent([1.0; N]).map_err(|e| e.to_string())?;
-            let sampler = PoissonDisk::builder(domain, case.radius)
-                .attempts(K)
-                .build()
-                .map_err(|e| e.to_string())?;
             let threads = NonZeroUsize::new(threads).ok_or("no threads")?;
-            sampler
+            sampler::<N>(case.radius, Candidates::Annulus, GridLayout::Auto)?
                 .generate_parallel(SEED, threads)
                 .map_err(|e| e.to_string())?
                 .len()
