@@ -39,12 +39,11 @@
 //!      so a term from one of its points counts with `sⱼ = n / c`, the
 //!      share of its pixel's `c` points that will stay (`sⱼ = 1` for the
 //!      others). Until 2026-11-24 (ninth session) the two rows were
-//!      eliminated together
-//!      and row `y + 1`'s result thrown away: each row was weighed twice,
-//!      for the same image error in the tracer study (within ±0.2 % in
-//!      all 12 cells, `docs/trace.md`) at 1.12–1.17× the time at `n = 4`
-//!      and 16 (`docs/performance-journal.md`, "Exact mode: one row
-//!      eliminated").
+//!      eliminated together and row `y + 1`'s result thrown away: each
+//!      row was weighed twice, for the same image error in the tracer
+//!      study (within ±0.2 % in all 12 cells, `docs/trace.md`) at
+//!      1.12–1.17× the time at `n = 4` and 16
+//!      (`docs/performance-journal.md`, "Exact mode: one row eliminated").
 //!    - [`ExactMethod::Random`]: the excess points of each pixel are picked
 //!      uniformly at random, blind to where they lie.
 //!
@@ -118,8 +117,8 @@ const MAX_BLOCKERS: usize = 4;
 /// with the sweep at `k = 10` (its third study), 0.1–7.8 % higher.
 /// Elimination now weighs one row at a time (the fourth study: RMSE
 /// within ±0.2 % of the two-row form it replaced, random dropping's
-/// −0.1 % to +7.8 % above it). Random dropping still
-/// samples faster: 0.73–0.78 of elimination's time at `n` = 4, 16 and 64
+/// −0.1 % to +7.8 % above it). Random dropping still samples faster:
+/// 0.73–0.78 of elimination's time at `n` = 4, 16 and 64
 /// (`examples/stream.rs`, 2026-11-24); a renderer whose sampling costs
 /// more than its shading may prefer it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
