@@ -330,9 +330,9 @@ pub(crate) struct Exact {
     /// Whether each point is in a pixel of the row settled that is over
     /// `n` as elimination starts: the points elimination may remove.
     over: Vec<bool>,
-    /// What each point's weight terms count for on the others' weights:
-    /// `n / c` for a point of row `y + 1` in a pixel of `c > n` points
-    /// (the share of them that will stay), else 1.
+    /// What the weight terms of each band pixel's points count for on
+    /// the others' weights: `n / c` for a pixel of row `y + 1` with
+    /// `c > n` points (the share of them that will stay), else 1.
     scale: Vec<f64>,
     /// A removed point's live neighbours and their weight terms.
     neighbours: Vec<(u32, f64)>,
@@ -987,7 +987,7 @@ impl Exact {
     /// Step 3's starting weights, without the final points above: for
     /// every point elimination may remove (`over`), the sum of its weight
     /// terms over the live points closer than `2rₑ`, each scaled by the
-    /// other end's `scale`, added in the order of the local grid
+    /// other end's pixel's `scale`, added in the order of the local grid
     /// (`cell_items`), which is the order [`Self::near`] meets them in.
     /// Each pair is found once, from the end that comes first in that
     /// order, looking only forward: the rest of its own cell row, then the
@@ -1005,27 +1005,26 @@ impl Exact {
                 a && (b as usize) < width && self.count.get(b as usize).is_some_and(|&c| c > n)
             }));
         self.scale.clear();
-        self.scale.extend(self.pixel.iter().map(|&b| {
-            let c = self.count.get(b as usize).copied().unwrap_or(0);
-            if (b as usize) >= width && c > n {
-                #[expect(clippy::cast_precision_loss, reason = "counts per pixel")]
-                let share = n as f64 / c as f64;
-                share
-            } else {
-                1.0
-            }
-        }));
+        self.scale
+            .extend(self.count.iter().enumerate().map(|(b, &c)| {
+                if b >= width && c > n {
+                    #[expect(clippy::cast_precision_loss, reason = "counts per pixel")]
+                    let share = n as f64 / c as f64;
+                    share
+                } else {
+                    1.0
+                }
+            }));
         let reach2 = self.reach * self.reach;
         let columns = width * self.cells;
         let rows = band_rows * self.cells;
         let k = self.cell_reach;
         let mut weight = core::mem::take(&mut self.weight);
         for (a, &i) in self.cell_items.iter().enumerate() {
-            let (Some(&c), Some(&p), Some(&over_i), Some(&scale_i)) = (
+            let (Some(&c), Some(&p), Some(&over_i)) = (
                 self.cell_of.get(i as usize),
                 self.points.get(i as usize),
                 self.over.get(i as usize),
-                self.scale.get(i as usize),
             ) else {
                 continue;
             };
@@ -1034,6 +1033,8 @@ impl Exact {
                 // Row `y + 1` from here on.
                 break;
             }
+            // `i` lies in row `y`, so its own terms count in full on its
+            // neighbours' weights (scale 1).
             let mut w = weight.get(i as usize).copied().unwrap_or(0.0);
             let (x0, x1) = (cx.saturating_sub(k), (cx + k).min(columns - 1));
             for yy in cy..=(cy + k).min(rows - 1) {
@@ -1050,15 +1051,15 @@ impl Exact {
                 for &j in self.cell_items.get(first..last).unwrap_or(&[]) {
                     let over_j = self.over.get(j as usize) == Some(&true);
                     if (over_i || over_j)
-                        && let (Some(q), Some(&scale_j)) =
-                            (self.points.get(j as usize), self.scale.get(j as usize))
+                        && let (Some(q), Some(&b)) =
+                            (self.points.get(j as usize), self.pixel.get(j as usize))
                     {
                         let d2 = distance_squared(&p, q);
                         if d2 < reach2 {
                             let t = self.weight_of(d2);
-                            w += t * scale_j;
+                            w += t * self.scale.get(b as usize).copied().unwrap_or(1.0);
                             if over_j && let Some(wj) = weight.get_mut(j as usize) {
-                                *wj += t * scale_i;
+                                *wj += t;
                             }
                         }
                     }
