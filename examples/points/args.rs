@@ -84,9 +84,10 @@ pub(crate) struct Args {
     /// Make the listed axes (0-based) periodic
     #[arg(long, value_name = "I,J,..", value_parser = common::list::<usize>)]
     periodic_axes: Option<List<usize>>,
-    /// Candidate attempts per active point
-    #[arg(long, value_name = "K", default_value_t = bridson::DEFAULT_ATTEMPTS)]
-    attempts: u32,
+    /// Candidate attempts per active point [default: 30; 10 with --exact,
+    /// the k exact mode is calibrated at]
+    #[arg(long, value_name = "K")]
+    attempts: Option<u32>,
     /// How candidates are drawn
     #[arg(long, value_name = "KIND", value_enum, default_value_t)]
     candidates: CandidatesArg,
@@ -169,7 +170,9 @@ pub(crate) struct Config {
     pub(crate) lo: Option<Vec<f64>>,
     /// One flag per axis (`dim` of them).
     pub(crate) periodic: Vec<bool>,
-    pub(crate) attempts: u32,
+    /// `--attempts`, if given: else the library's default for the run
+    /// (30, or 10 in exact mode).
+    pub(crate) attempts: Option<u32>,
     pub(crate) candidates: bridson::Candidates,
     pub(crate) seed: u64,
     pub(crate) max_points: Option<u64>,
@@ -357,7 +360,7 @@ mod tests {
             extent: Some(vec![1.0, 1.0]),
             lo: None,
             periodic: vec![false, false],
-            attempts: 30,
+            attempts: None,
             candidates: Candidates::Annulus,
             seed: 7,
             max_points: None,
@@ -436,7 +439,7 @@ mod tests {
         assert_eq!(c.extent, Some(vec![2.0, 3.0, 4.0]), "extent");
         assert_eq!(c.lo, Some(vec![-1.0, -2.0, -3.0]), "lo");
         assert_eq!(c.periodic, vec![true, false, true], "periodic axes");
-        assert_eq!(c.attempts, 12, "attempts");
+        assert_eq!(c.attempts, Some(12), "attempts");
         assert_eq!(c.candidates, Candidates::Sphere, "candidates");
         assert_eq!(c.seed, u64::MAX, "seed");
         assert_eq!(c.max_points, Some(100), "cap");

@@ -126,7 +126,7 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
         None => PoissonDisk::<N>::builder(domain, config.radius),
     };
     builder
-        .attempts(config.attempts)
+        .attempts(config.attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS))
         .max_points(config.max_points)
         .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
         .candidates(config.candidates)
@@ -217,25 +217,34 @@ fn write_stream<const N: usize, W: Write>(
     Ok(count)
 }
 
-/// `--pixels`: streams the raster pixel by pixel, row 0 first.
-fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
-    if let Some(camera) = raster.camera {
-        return crate::camera::run(config, raster, camera);
-    }
-    let builder = Tiled::builder(raster.width, raster.height)
-        .attempts(config.attempts)
+/// The stream `--pixels` asks for (the camera's aside).
+fn raster_stream(config: &Config, raster: &Raster) -> Result<Tiled, Failure> {
+    let mut builder = Tiled::builder(raster.width, raster.height)
         .candidates(config.candidates)
         .scheme(if raster.paper {
             Scheme::Paper
         } else {
             Scheme::Sweep
         });
+    // Only when asked for: exact mode's own default (10) is the `k` its
+    // edge correction is calibrated at.
+    if let Some(k) = config.attempts {
+        builder = builder.attempts(k);
+    }
     let builder = match (raster.exact, raster.per_pixel) {
         (Some(n), _) => builder.exact(n),
         (None, Some(n)) => builder.per_pixel(n),
         (None, None) => builder.radius(config.radius),
     };
-    let tiled = builder.build().map_err(|e| Failure::Usage(e.to_string()))?;
+    builder.build().map_err(|e| Failure::Usage(e.to_string()))
+}
+
+/// `--pixels`: streams the raster pixel by pixel, row 0 first.
+fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
+    if let Some(camera) = raster.camera {
+        return crate::camera::run(config, raster, camera);
+    }
+    let tiled = raster_stream(config, &raster)?;
     let (w, h) = (f64::from(raster.width), f64::from(raster.height));
     let header = (tiled.radius(), [0.0, 0.0], [w, h]);
     let start = Instant::now();
@@ -426,6 +435,30 @@ mod tests {
             })
             .collect();
         assert_eq!(got, expected, "{line}: the parallel set, as on one thread");
+    }
+
+    #[test]
+    fn exact_mode_keeps_its_own_attempts_unless_asked() {
+        let stream = |line: &str| {
+            let c = config(line);
+            let raster = c.raster.expect("a raster");
+            raster_stream(&c, &raster).unwrap().attempts()
+        };
+        assert_eq!(
+            stream("--pixels 16x8 --exact 4"),
+            bridson::EXACT_ATTEMPTS,
+            "exact mode's calibrated k"
+        );
+        assert_eq!(stream("--pixels 16x8 --exact 4 --attempts 30"), 30);
+        assert_eq!(
+            stream("--pixels 16x8 --per-pixel 4"),
+            bridson::DEFAULT_ATTEMPTS
+        );
+        assert_eq!(
+            config("--dim 2 --radius 0.1").attempts,
+            None,
+            "the batch run's default is the library's"
+        );
     }
 
     #[test]
