@@ -81,10 +81,10 @@ pub(crate) struct Args {
     /// Make every axis periodic (toroidal)
     #[arg(long, help_heading = "Sampler")]
     periodic: bool,
-    /// Candidate attempts per active point
-    #[arg(long, value_name = "K", default_value_t = bridson::DEFAULT_ATTEMPTS,
-          help_heading = "Sampler")]
-    attempts: u32,
+    /// Candidate attempts per active point [default: 30; 10 with --exact,
+    /// the k exact mode is calibrated at]
+    #[arg(long, value_name = "K", help_heading = "Sampler")]
+    attempts: Option<u32>,
     /// How candidates are drawn
     #[arg(
         long,
@@ -231,7 +231,9 @@ pub(crate) struct Config {
     pub(crate) extent: Option<Vec<f64>>,
     pub(crate) pixels: Option<Raster>,
     pub(crate) periodic: bool,
-    pub(crate) attempts: u32,
+    /// `--attempts`, if given: else the library's default for the run
+    /// (30, or 10 in exact mode).
+    pub(crate) attempts: Option<u32>,
     pub(crate) candidates: bridson::Candidates,
     pub(crate) seed: u64,
     pub(crate) out_dir: Option<PathBuf>,
@@ -471,7 +473,7 @@ mod tests {
         );
         assert_eq!(c.radius, Some(0.2), "radius");
         assert!(c.periodic && c.pixel_grid && c.cell_grid, "switches");
-        assert_eq!(c.attempts, 12, "attempts");
+        assert_eq!(c.attempts, Some(12), "attempts");
         assert_eq!(c.candidates, Candidates::Sphere, "candidates");
         assert_eq!(c.seed, 9, "seed");
         assert_eq!(c.out_dir, Some(PathBuf::from("o")), "out dir");

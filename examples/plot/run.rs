@@ -52,7 +52,7 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
             .ok_or("no default radius for this box: give --radius")?,
     };
     PoissonDisk::<N>::builder(domain, radius)
-        .attempts(config.attempts)
+        .attempts(config.attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS))
         .candidates(config.candidates)
         .build()
         .map_err(|e| e.to_string())
@@ -63,9 +63,12 @@ fn streamer(config: &Config, radius: f64) -> Result<Option<Tiled>, String> {
     let (Some(mode), Some(raster)) = (config.stream, config.pixels) else {
         return Ok(None);
     };
-    let builder = Tiled::builder(raster.width, raster.height)
-        .attempts(config.attempts)
-        .candidates(config.candidates);
+    let mut builder = Tiled::builder(raster.width, raster.height).candidates(config.candidates);
+    // Only when asked for: exact mode's own default (10) is the `k` its
+    // edge correction is calibrated at.
+    if let Some(k) = config.attempts {
+        builder = builder.attempts(k);
+    }
     let builder = match mode {
         Stream::Sweep => builder.radius(radius),
         Stream::Paper => builder.radius(radius).scheme(Scheme::Paper),
@@ -214,7 +217,8 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
 
     if let Some(target) = &config.report {
         let start = Instant::now();
-        let json = quality_report(config, domain, radius, &first);
+        let attempts = tiled.as_ref().map_or(sampler.attempts(), Tiled::attempts);
+        let json = quality_report(config, domain, (radius, attempts), &first);
         write_report(target, &json)?;
         report(&format!(
             "plot: report in {:.2} s",
@@ -354,12 +358,13 @@ struct RasterReport {
 }
 
 /// The JSON quality report of `points`, a set of `domain` with minimum
-/// distance `radius` drawn as `config` says (see the README for the
-/// fields). Takes the plain list, so a streamed set is measured alike.
+/// distance `radius` drawn with `attempts` as `config` says (see the README
+/// for the fields). Takes the plain list, so a streamed set is measured
+/// alike.
 fn quality_report<const N: usize>(
     config: &Config,
     domain: Domain<N>,
-    radius: f64,
+    (radius, attempts): (f64, u32),
     points: &[[f64; N]],
 ) -> String {
     let pairs = quality::pair_stats(points, domain, radius);
@@ -385,7 +390,7 @@ fn quality_report<const N: usize>(
     let _ = writeln!(j, "  \"dim\": {N},");
     let _ = writeln!(j, "  \"radius\": {},", number(radius));
     let _ = writeln!(j, "  \"candidates\": \"{candidates}\",");
-    let _ = writeln!(j, "  \"attempts\": {},", config.attempts);
+    let _ = writeln!(j, "  \"attempts\": {attempts},");
     let _ = writeln!(j, "  \"seed\": {},", config.seed);
     let _ = writeln!(j, "  \"lo\": [{}],", numbers(&domain.lo()));
     let _ = writeln!(j, "  \"hi\": [{}],", numbers(&domain.hi()));
@@ -488,6 +493,27 @@ mod tests {
     }
 
     #[test]
+    fn exact_mode_keeps_its_own_attempts_unless_asked() {
+        let k = |line: &str| {
+            let c = config(line);
+            streamer(&c, 0.3).unwrap().expect("a stream").attempts()
+        };
+        assert_eq!(
+            k("--pixels 16x8 --exact 4 --report -"),
+            bridson::EXACT_ATTEMPTS,
+            "exact mode's calibrated k"
+        );
+        assert_eq!(k("--pixels 16x8 --exact 4 --attempts 30 --report -"), 30);
+        assert_eq!(
+            build::<2>(&config("--radius 0.1 --report -"))
+                .unwrap()
+                .attempts(),
+            bridson::DEFAULT_ATTEMPTS,
+            "the batch run's default"
+        );
+    }
+
+    #[test]
     fn the_default_radius_gives_about_4000_points() {
         let r = default_radius::<2>(1.0).expect("radius");
         assert!((r - 0.0124).abs() < 1e-4, "r {r}");
@@ -523,7 +549,12 @@ mod tests {
         let c = config("--pixels 6x4 --radius 0.3 --probes 2000 --report -");
         let sampler = build::<2>(&c).expect("sampler");
         let points = sampler.generate_seeded(0).unwrap();
-        let text = quality_report(&c, *sampler.domain(), sampler.radius(), &points);
+        let text = quality_report(
+            &c,
+            *sampler.domain(),
+            (sampler.radius(), sampler.attempts()),
+            &points,
+        );
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         assert_eq!(v["n"].as_u64(), Some(points.len() as u64), "n");
         assert_eq!(v["pairs_closer_than_radius"].as_u64(), Some(0), "no pair");
@@ -554,7 +585,7 @@ mod tests {
         }
         let plain = config("--radius 0.3 --probes 0 --report -");
         let s = build::<2>(&plain).expect("sampler");
-        let text = quality_report(&plain, *s.domain(), s.radius(), &[]);
+        let text = quality_report(&plain, *s.domain(), (s.radius(), s.attempts()), &[]);
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         assert!(v["min_distance"].is_null(), "no pair: null");
         assert!(v["rho"].is_null(), "no points: null");
