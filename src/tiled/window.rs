@@ -287,8 +287,7 @@ impl Window {
             reason = "a saturating cast of a non-negative row"
         )]
         let first = ((row as f64 - self.radius).max(0.0) / self.plan.side) as usize;
-        self.grid
-            .slide_to(first.saturating_sub(1), self.plan.live_rows);
+        self.grid.slide_to(first.saturating_sub(1));
     }
 
     /// Whether pixel row `y` is inside the window (so it may hold points).
