@@ -36,7 +36,7 @@ pub(crate) struct WindowPlan {
     pub(crate) width: usize,
     pub(crate) height: usize,
     /// Grid cell side, `r/√2` as in the batch grid (cells need not line
-    /// up with pixels: the grid slides by cell rows).
+    /// up with pixels: the grid's ring moves by cell rows).
     pub(crate) side: f64,
     /// Grid cells across the raster, and cell rows the window spans at
     /// most.
