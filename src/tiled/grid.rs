@@ -1,24 +1,19 @@
 //! The streaming window's background grid: Bridson's dense grid over the
-//! few cell rows the sweep can still touch, kept as a ring of rows.
+//! few cell rows the sweep can still touch, in one flat array whose rows
+//! slide down the image.
 //!
 //! Cells have side `1/c <= r/√2` (`c` cells per pixel, so cell rows line up
 //! with pixel rows) and hold the point itself (`[f64; 2]`, or [`FAR`] when
 //! empty): the window is small enough to sit in cache, so inline
 //! coordinates save the batch grid's second load, and in 2-D about half the
-//! cells are occupied. A neighbour search is the batch grid's: linear
-//! offsets, nearest first, with the stencil of the quarter of the cell the
-//! candidate lies in (`grid::dense::Stencil`, the same construction and
-//! rounding margin).
-//!
-//! The rows are addressed modulo the window's height, as issue 16 asked,
-//! without a division: a point's ring row is found from the window's first
-//! row with one compare, and the ring has `reach` rows more at either end
-//! that mirror the rows at its other end, so that a stencil's linear
-//! offsets never need wrapping. A cell's array index is its key while its
-//! row is live. An earlier form slid the rows down an array of one and a
-//! half windows and copied the live rows back to its start when it reached
-//! the end: a third more memory and two rows copied per row of the image
-//! (`docs/performance-journal.md`).
+//! cells are occupied. The rows live in a flat array with a fixed stride,
+//! so a neighbour search is the batch grid's: linear offsets, nearest
+//! first, with the stencil of the quarter of the cell the candidate lies in
+//! (`grid::dense::Stencil`, the same construction and rounding margin).
+//! Instead of addressing rows modulo the window height (a division per
+//! cell), the array holds about twice the window's rows; when the window
+//! reaches its end, the live rows are copied back to its start. That costs
+//! one row copy per row of the image, amortised.
 
 use crate::grid::dense::{Stencil, StencilShape, locate, parts};
 use crate::vector::distance_squared;
@@ -38,40 +33,21 @@ const SEED_MAX: usize = 16;
 /// grid's `SCAN_CHUNK`).
 const SCAN_CHUNK: usize = 8;
 
-/// The key of a cell outside the rows the ring holds: so far from the
-/// array that no stencil offset brings it back (the lookups find nothing).
-const OUTSIDE: usize = usize::MAX / 2;
-
 #[derive(Debug)]
 pub(crate) struct RollingGrid {
-    /// `(ring + 2·reach) × columns` cells: ring row `t` at array row
-    /// `reach + t`, and its copy at `reach + ring + t` if `t < reach`, at
-    /// `t + reach - ring` if `t >= ring - reach`.
+    /// `rows × columns` cells; array row `a` holds global cell row
+    /// `first + a - reach`.
     cells: Vec<[f64; 2]>,
     columns: usize,
-    /// Ring rows: global cell rows `first - reach .. first - reach + ring`.
-    ring: usize,
-    /// Cells searched on each side; also the padding, in cells, left and
-    /// right, the rows held above the first live row, and the mirrored
-    /// rows at each end of the ring.
+    rows: usize,
+    /// Cells searched on each side; also the padding, in cells, left, right
+    /// and above the first live row.
     reach: usize,
-    /// The first live global cell row (`reach` rows above it are held).
+    /// The global cell row at array row `reach`.
     first: usize,
-    /// The ring row of global row `first - reach`.
-    first_ring: usize,
-    /// What [`Self::index`] needs, kept from `first` and `first_ring` at
-    /// each slide: `reach - first` (wrapping), `ring - first_ring`, the
-    /// array index of global row `first - reach`'s first inside cell, and
-    /// that less `ring` rows (wrapping).
-    lift: usize,
-    wrap_at: usize,
-    base: usize,
-    base_wrapped: usize,
-    /// Keys below this (ring rows `0..reach`) have a copy `ring` rows on;
-    /// keys from `high` on (ring rows from `ring - reach`) one `ring` rows
-    /// back.
-    low: usize,
-    high: usize,
+    /// The array index of cell key 0 ([`Self::key`]), wrapping: `reach`
+    /// rows and columns of padding, less the rows slid past.
+    origin: usize,
     /// Cells per axis inside the raster.
     cells_x: usize,
     cells_y: usize,
@@ -117,7 +93,7 @@ impl RollingGrid {
         (radius, reach, eta): (f64, usize, f64),
         prefetch: bool,
     ) -> Option<Self> {
-        let (columns, ring, rows) = Self::size(cells_x, live_rows, reach)?;
+        let (columns, rows) = Self::size(cells_x, live_rows, reach)?;
         let shape = StencilShape {
             reach: [reach; 2],
             side: [side; 2],
@@ -141,19 +117,13 @@ impl RollingGrid {
         let parts = (0..count)
             .map(|k| Stencil::new(&shape, &stride, &[k % parts(2), k / parts(2)], parts(2)))
             .collect::<Option<Vec<_>>>()?;
-        let mut grid = Self {
+        Some(Self {
             cells: vec![FAR; columns.checked_mul(rows)?],
             columns,
-            ring,
+            rows,
             reach,
             first: 0,
-            first_ring: 0,
-            lift: 0,
-            wrap_at: 0,
-            base: 0,
-            base_wrapped: 0,
-            low: reach.checked_mul(2)?.checked_mul(columns)?,
-            high: ring.checked_mul(columns)?,
+            origin: origin(reach, columns, 0),
             cells_x,
             cells_y,
             inv_side: 1.0 / side,
@@ -161,9 +131,7 @@ impl RollingGrid {
             parts,
             seed_runs,
             block,
-        };
-        grid.place();
-        Some(grid)
+        })
     }
 
     /// A grid with no cells, where nothing conflicts and nothing can be
@@ -174,16 +142,10 @@ impl RollingGrid {
         Self {
             cells: Vec::new(),
             columns: 0,
-            ring: 0,
+            rows: 0,
             reach: 0,
             first: 0,
-            first_ring: 0,
-            lift: 0,
-            wrap_at: 0,
-            base: 0,
-            base_wrapped: 0,
-            low: 0,
-            high: usize::MAX,
+            origin: 0,
             cells_x: 1,
             cells_y: 1,
             inv_side: 1.0,
@@ -194,20 +156,23 @@ impl RollingGrid {
         }
     }
 
-    /// Columns, ring rows (the live rows and `reach` more on each side)
-    /// and array rows (the ring and its mirrored ends).
-    fn size(cells_x: usize, live_rows: usize, reach: usize) -> Option<(usize, usize, usize)> {
+    /// Columns and array rows: the live rows and their padding, and half
+    /// as many again, so that a copy back is needed once per half a
+    /// window of rows: about two rows copied per row of the image, which
+    /// is cheap next to sampling it, where doubling would cost memory
+    /// (16 MB more at 16 384 pixels wide and 4 a pixel).
+    fn size(cells_x: usize, live_rows: usize, reach: usize) -> Option<(usize, usize)> {
         let columns = cells_x.checked_add(reach.checked_mul(2)?)?;
-        let ring = live_rows.max(1).checked_add(reach.checked_mul(2)?)?;
-        let rows = ring.checked_add(reach.checked_mul(2)?)?;
-        Some((columns, ring, rows))
+        let padded = live_rows.checked_add(reach.checked_mul(2)?)?;
+        let rows = padded.checked_add(padded / 2 + 1)?;
+        Some((columns, rows))
     }
 
     /// Heap bytes of a grid built with these sizes (cells and stencils; the
     /// stencils are bounded by the `(2·reach + 1)²` block they are cut
     /// from, as the batch grid counts them).
     pub(crate) fn bytes(cells_x: usize, live_rows: usize, reach: usize) -> Option<u64> {
-        let (columns, _, rows) = Self::size(cells_x, live_rows, reach)?;
+        let (columns, rows) = Self::size(cells_x, live_rows, reach)?;
         let cells = columns
             .checked_mul(rows)?
             .checked_mul(size_of::<[f64; 2]>())?;
@@ -218,92 +183,61 @@ impl RollingGrid {
         u64::try_from(cells.checked_add(stencils)?).ok()
     }
 
-    /// Makes global cell rows from `row` on the live ones, with `reach`
-    /// rows above them and every row up to `row + live_rows` (plus the
-    /// search reach) in the ring: the rows above `row - reach` are
-    /// emptied and take the new rows at the bottom.
-    pub(crate) fn slide_to(&mut self, row: usize) {
-        if row <= self.first || self.ring == 0 {
+    /// Makes global cell rows from `row` on addressable, with every row
+    /// up to `row + live_rows` (plus the search reach) in the array,
+    /// copying the rows still needed to the array's start when the window
+    /// has slid past its end. Rows above `row` are no longer needed.
+    pub(crate) fn slide_to(&mut self, row: usize, live_rows: usize) {
+        // One past the last global row the array holds.
+        let end = self.first + self.rows - self.reach;
+        if row <= self.first || row + live_rows + self.reach <= end {
             return;
         }
-        let step = row - self.first;
-        for k in 0..step.min(self.ring) {
-            let t = (self.first_ring + k) % self.ring;
-            self.clear_ring_row(t);
+        // Drop the array rows above `row - reach`; the rest move up.
+        let start = (row - self.first).saturating_mul(self.columns);
+        let kept = self.cells.len().saturating_sub(start);
+        if kept > 0 {
+            self.cells.copy_within(start.., 0);
         }
-        self.first_ring = (self.first_ring + step % self.ring) % self.ring;
+        if let Some(rest) = self.cells.get_mut(kept..) {
+            rest.fill(FAR);
+        }
         self.first = row;
-        self.place();
+        self.origin = origin(self.reach, self.columns, row);
     }
 
-    /// Sets what [`Self::index`] reads from `first` and `first_ring`.
-    fn place(&mut self) {
-        self.lift = self.reach.wrapping_sub(self.first);
-        self.wrap_at = self.ring - self.first_ring;
-        self.base = (self.reach + self.first_ring) * self.columns + self.reach;
-        self.base_wrapped = self.base.wrapping_sub(self.ring * self.columns);
-    }
-
-    /// Empties ring row `t` and its copy.
-    fn clear_ring_row(&mut self, t: usize) {
-        let columns = self.columns;
-        let mut clear = |array_row: usize| {
-            let start = array_row.saturating_mul(columns);
-            if let Some(cells) = self.cells.get_mut(start..start.saturating_add(columns)) {
-                cells.fill(FAR);
-            }
-        };
-        clear(self.reach + t);
-        if t < self.reach {
-            clear(self.reach + self.ring + t);
-        }
-        if t + self.reach >= self.ring {
-            clear(t + self.reach - self.ring);
-        }
-    }
-
-    /// Whether the cell with key `key` has `reach` rows of the ring above
-    /// and below it, so that a search around it reads only rows the ring
-    /// holds (the window's plan sizes the ring for that; checked in tests).
-    fn searchable(&self, key: usize) -> bool {
-        let row = key / self.columns.max(1);
-        let t = row.wrapping_sub(self.reach);
-        let d = if t >= self.first_ring {
-            t - self.first_ring
-        } else {
-            t + self.ring - self.first_ring
-        };
-        d >= self.reach && d + self.reach < self.ring
-    }
-
-    /// The key of global cell `(cx, cy)`: its index in the array, where
-    /// it stays while its row is live; [`OUTSIDE`] if the ring does not
-    /// hold the row.
+    /// The array index of cell `(cx, cy)` (global), or `usize::MAX` if it
+    /// is above the array.
     #[inline(always)]
     fn index(&self, cx: usize, cy: usize) -> usize {
-        // The row's place below the first row held; above it, wrapped past
-        // the ring.
-        let d = cy.wrapping_add(self.lift);
-        if d >= self.ring {
-            return OUTSIDE;
+        match (cy + self.reach).checked_sub(self.first) {
+            Some(a) => a * self.columns + cx + self.reach,
+            None => usize::MAX,
         }
-        // Past the ring's last row, the row wraps to its first.
-        let base = if d >= self.wrap_at {
-            self.base_wrapped
-        } else {
-            self.base
-        };
-        base.wrapping_add(d * self.columns + cx)
     }
 
-    /// The key of `p`'s cell (a point inside the raster, in a row the
-    /// ring holds): its array index ([`Self::index`]), valid as long as
-    /// its row is live. The candidate's search finds it for the insert,
-    /// and the next pick's prefetch for that pick's seed.
+    /// The key of `p`'s cell (a point inside the raster): its global cell
+    /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
+    /// index it stays valid as the rows slide: the candidate's search finds
+    /// it for the insert, and the next pick's prefetch for that pick's
+    /// seed.
     #[inline(always)]
     pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
         let (cx, cy, _) = self.locate(p);
-        self.index(cx, cy)
+        self.key_of(cx, cy)
+    }
+
+    /// The key of global cell `(cx, cy)`.
+    #[inline(always)]
+    fn key_of(&self, cx: usize, cy: usize) -> usize {
+        cy.wrapping_mul(self.columns).wrapping_add(cx)
+    }
+
+    /// The array index of the cell with key `key` (wrapping: a cell above
+    /// the array wraps below zero, past the array's end).
+    #[inline(always)]
+    fn at(&self, key: usize) -> usize {
+        key.wrapping_add(self.origin)
     }
 
     /// The global cell of a point inside the raster, and the quarter of the
@@ -321,9 +255,8 @@ impl RollingGrid {
     #[inline(always)]
     pub(crate) fn conflict(&self, p: &[f64; 2]) -> (usize, Option<[f64; 2]>) {
         let (cx, cy, part) = self.locate(p);
-        let key = self.index(cx, cy);
-        debug_assert!(self.searchable(key), "a search past the ring's rows");
-        let base = key;
+        let key = self.key_of(cx, cy);
+        let base = self.at(key);
         let Some(stencil) = self.parts.get(part) else {
             return (key, None);
         };
@@ -356,8 +289,7 @@ impl RollingGrid {
     /// ([`Self::key`]).
     #[inline(always)]
     pub(crate) fn seed(&self, key: usize, limit: usize, mut take: impl FnMut(&[f64; 2])) {
-        debug_assert!(self.searchable(key), "a seed past the ring's rows");
-        let base = key;
+        let base = self.at(key);
         let mut found = [FAR; SEED_MAX];
         let mut n = 0;
         for &(first, len) in &self.seed_runs {
@@ -394,7 +326,7 @@ impl RollingGrid {
         if self.block.rows == 0 {
             return key;
         }
-        let mut row = key.wrapping_add_signed(self.block.first);
+        let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
         let ask = |at: usize| crate::prefetch::prefetch(cells, at);
         match *self.block.lines.as_slice() {
@@ -435,11 +367,10 @@ impl RollingGrid {
         );
         for cy in lo..=hi {
             // The row's first (padding) cell; `usize::MAX` above the array.
-            let start = self.index(0, cy);
-            if start != OUTSIDE
-                && let Some(cells) = start
-                    .checked_sub(self.reach)
-                    .and_then(|a| self.cells.get(a..a.checked_add(self.columns)?))
+            if let Some(cells) = self
+                .index(0, cy)
+                .checked_sub(self.reach)
+                .and_then(|a| self.cells.get(a..a.checked_add(self.columns)?))
             {
                 take(cells);
             }
@@ -455,24 +386,6 @@ impl RollingGrid {
         let index = self.index(cx, cy);
         if let Some(cell) = self.cells.get_mut(index) {
             *cell = p;
-            self.mirror(index, p);
-        }
-    }
-
-    /// Writes `p` to the copy of the cell with key `key`, if its row has
-    /// one (the `reach` rows at each end of the ring).
-    #[inline(always)]
-    fn mirror(&mut self, key: usize, p: [f64; 2]) {
-        let span = self.ring * self.columns;
-        if key < self.low
-            && let Some(cell) = self.cells.get_mut(key + span)
-        {
-            *cell = p;
-        }
-        if key >= self.high
-            && let Some(cell) = self.cells.get_mut(key - span)
-        {
-            *cell = p;
         }
     }
 
@@ -481,10 +394,10 @@ impl RollingGrid {
     /// cause, or lies outside the array.
     #[inline(always)]
     pub(crate) fn insert(&mut self, p: [f64; 2], key: usize) -> bool {
-        match self.cells.get_mut(key) {
+        let index = self.at(key);
+        match self.cells.get_mut(index) {
             Some(cell) if cell[0] == f64::INFINITY => {
                 *cell = p;
-                self.mirror(key, p);
                 true
             }
             _ => false,
@@ -508,6 +421,16 @@ fn runs(offsets: &[isize]) -> Vec<(isize, usize)> {
         }
     }
     runs
+}
+
+/// The array index of cell key 0 when global cell row `first` sits at
+/// array row `reach`: `reach` padding columns and `reach - first` rows in,
+/// wrapping.
+fn origin(reach: usize, columns: usize, first: usize) -> usize {
+    reach
+        .wrapping_sub(first)
+        .wrapping_mul(columns)
+        .wrapping_add(reach)
 }
 
 /// The cache lines (64 bytes, 4 cells) covering the square of cells a
@@ -547,13 +470,13 @@ mod tests {
     use super::*;
     use crate::random::{below, seeded_rng, unit};
 
-    /// Over many slides, so that the ring wraps many times: every search
-    /// answers as a brute-force scan of the stored points does, near the
-    /// ring's ends (its mirrored rows) as elsewhere; a seed hands on only
-    /// stored points; a gathered row holds exactly its points; and a row
-    /// slid past leaves nothing behind.
+    /// Over many slides, so that the rows are copied back to the array's
+    /// start many times: every search answers as a brute-force scan of the
+    /// stored points does; a seed hands on only stored points; a gathered
+    /// row holds exactly its points; and a row slid past leaves nothing
+    /// behind.
     #[test]
-    fn the_ring_answers_as_a_brute_force_scan_as_it_wraps() {
+    fn the_window_answers_as_a_brute_force_scan_as_it_slides() {
         let (radius, side, reach, live_rows) = (0.39, 0.25, 2, 9);
         let (cells_x, cells_y) = (24, 2_000);
         let mut grid = RollingGrid::new(
@@ -574,10 +497,10 @@ mod tests {
         let mut stored: Vec<[f64; 2]> = Vec::new();
         let (mut found, mut kept) = (0, 0);
         for first in 0..1_500 {
-            grid.slide_to(first);
+            grid.slide_to(first, live_rows);
             stored.retain(|p| row_of(p) + reach >= first);
             for _ in 0..8 {
-                // A candidate in a live row, whose search stays in the ring.
+                // A candidate in a live row.
                 let cy = first + below(&mut rng, live_rows);
                 let c = [
                     unit(&mut rng) * cells_x as f64 * side,

@@ -36,7 +36,7 @@ pub(crate) struct WindowPlan {
     pub(crate) width: usize,
     pub(crate) height: usize,
     /// Grid cell side, `r/√2` as in the batch grid (cells need not line
-    /// up with pixels: the grid's ring moves by cell rows).
+    /// up with pixels: the grid slides by cell rows).
     pub(crate) side: f64,
     /// Grid cells across the raster, and cell rows the window spans at
     /// most.
@@ -287,7 +287,8 @@ impl Window {
             reason = "a saturating cast of a non-negative row"
         )]
         let first = ((row as f64 - self.radius).max(0.0) / self.plan.side) as usize;
-        self.grid.slide_to(first.saturating_sub(1));
+        self.grid
+            .slide_to(first.saturating_sub(1), self.plan.live_rows);
     }
 
     /// Whether pixel row `y` is inside the window (so it may hold points).
