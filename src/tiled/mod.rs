@@ -427,8 +427,8 @@ impl Tiled {
 
     /// Bytes of the rolling window (the grid, which holds the sweep's
     /// points, per-pixel counts, and for the paper's scheme and exact mode
-    /// the per-pixel lists' headers, not their points): proportional to
-    /// the width, independent of the height.
+    /// the per-pixel lists with their first eight points, not the points
+    /// past those): proportional to the width, independent of the height.
     pub fn window_bytes(&self) -> u64 {
         self.plan.bytes
     }
@@ -537,7 +537,7 @@ impl<R: Rng> Pixels<R> {
     /// Makes the next pixel and puts its points into `points` (whose old
     /// contents are dropped), reusing its allocation: the sweep copies them
     /// from the row it gathered, exact mode from the pixel's final points
-    /// (kept for the rows below), the paper's scheme swaps in the pixel's
+    /// (kept for the rows below), the paper's scheme copies out (and empties) the pixel's
     /// list. Returns the pixel's `(x, y)`, or `None` at the end of the
     /// image.
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
@@ -547,7 +547,8 @@ impl<R: Rng> Pixels<R> {
             points.extend_from_slice(&self.window.slot(x, y).kept);
         } else if self.lists() {
             if let Some(slot) = self.window.slot_mut(x, y) {
-                core::mem::swap(points, &mut slot.points);
+                points.extend_from_slice(&slot.points);
+                slot.points.clear();
             }
         } else {
             points.extend_from_slice(self.window.pixel_points(x));
@@ -960,7 +961,7 @@ impl<R: Rng> Iterator for Pixels<R> {
             self.window
                 .slot_mut(x, y)
                 .map(|slot| {
-                    let points = slot.points.clone();
+                    let points = slot.points.to_vec();
                     slot.points.clear();
                     points
                 })
