@@ -537,9 +537,9 @@ impl<R: Rng> Pixels<R> {
     /// Makes the next pixel and puts its points into `points` (whose old
     /// contents are dropped), reusing its allocation: the sweep copies them
     /// from the row it gathered, exact mode from the pixel's final points
-    /// (kept for the rows below), the paper's scheme copies out (and empties) the pixel's
-    /// list. Returns the pixel's `(x, y)`, or `None` at the end of the
-    /// image.
+    /// (kept for the rows below), the paper's scheme from the pixel's list,
+    /// which it empties. Returns the pixel's `(x, y)`, or `None` at the end
+    /// of the image.
     pub fn next_into(&mut self, points: &mut Vec<[f64; 2]>) -> Option<(u32, u32)> {
         let (x, y) = self.advance()?;
         points.clear();
