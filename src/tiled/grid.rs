@@ -219,8 +219,7 @@ impl RollingGrid {
     /// The key of `p`'s cell (a point inside the raster): its global cell
     /// numbered row by row, `cy·columns + cx`, wrapping. Unlike an array
     /// index it stays valid as the rows slide: the candidate's search finds
-    /// it for the insert, and the next pick's prefetch for that pick's
-    /// seed.
+    /// it for the insert, and the sweep's queue names its points by it.
     #[inline(always)]
     pub(crate) fn key(&self, p: &[f64; 2]) -> usize {
         let (cx, cy, _) = self.locate(p);
@@ -314,17 +313,16 @@ impl RollingGrid {
         }
     }
 
-    /// Asks for the cells a pick around `p` reads first: the sweep picks
-    /// its next parent anywhere along the front, whose width can put the
-    /// window's live rows past the nearest caches; its candidates, up to
-    /// `2r` away, search cells up to `2r` plus the reach from it, of which
-    /// the inner block (`r` plus the reach) is fetched. Returns `p`'s cell
-    /// key ([`Self::key`]), prefetching or not.
+    /// Asks for the cells a pick around the point with cell key `key`
+    /// ([`Self::key`]) reads first: the sweep picks its next parent anywhere
+    /// along the front, whose width can put the window's live rows past the
+    /// nearest caches; its candidates, up to `2r` away, search cells up to
+    /// `2r` plus the reach from it, of which the inner block (`r` plus the
+    /// reach) is fetched.
     #[inline(always)]
-    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
-        let key = self.key(p);
+    pub(crate) fn prefetch(&self, key: usize) {
         if self.block.rows == 0 {
-            return key;
+            return;
         }
         let mut row = self.at(key).wrapping_add_signed(self.block.first);
         let cells = &self.cells;
@@ -348,7 +346,6 @@ impl RollingGrid {
                 }
             }
         }
-        key
     }
 
     /// Hands the cells of each cell row that covers pixel row `y` to
@@ -375,6 +372,13 @@ impl RollingGrid {
                 take(cells);
             }
         }
+    }
+
+    /// The point stored in the cell with key `key` ([`Self::key`]), or
+    /// [`FAR`] if the cell is empty or outside the array.
+    #[inline(always)]
+    pub(crate) fn point(&self, key: usize) -> [f64; 2] {
+        self.cells.get(self.at(key)).copied().unwrap_or(FAR)
     }
 
     /// Stores `p` in its cell, over whatever the cell held: exact mode's

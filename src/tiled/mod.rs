@@ -46,7 +46,7 @@ use core::iter::FusedIterator;
 pub use exact::EXACT_ATTEMPTS;
 pub use exact::ExactMethod;
 use exact::{DEFAULT_OVERSAMPLE, Exact};
-use queue::BandQueue;
+use queue::{BandQueue, Queued};
 use rand::Rng;
 use window::{Window, WindowPlan};
 
@@ -503,7 +503,7 @@ pub struct Pixels<R> {
     rows_per_round: usize,
     /// Per block, the points to work in it before the current key limit,
     /// with their buckets.
-    blocks: Vec<Vec<([f64; 2], u64)>>,
+    blocks: Vec<Vec<(Queued, u64)>>,
     /// The blocks in the order they are worked, and which are still to be.
     order: Vec<usize>,
     pending: Vec<bool>,
@@ -636,13 +636,13 @@ impl<R: Rng> Pixels<R> {
         // it throws its candidates; it stays active until it fails.
         loop {
             let window = &self.window;
-            let Some((place, parent, cell)) = self
+            let Some((place, cell)) = self
                 .queue
-                .pick(limit, &mut self.rng, |p| window.prefetch(p))
+                .pick(limit, &mut self.rng, |key| window.prefetch(key))
             else {
                 break;
             };
-            let cell = cell.unwrap_or_else(|| window.key(&parent));
+            let parent = window.point(cell);
             match self.spawn((&parent, cell), (0, y), false) {
                 Some(child) => self.push(child),
                 None => self.queue.retire(place),
@@ -680,10 +680,11 @@ impl<R: Rng> Pixels<R> {
         }
         let mut any = false;
         let blocks = &mut self.blocks;
-        self.queue.drain_below(limit, |p, bucket| {
+        let window = &self.window;
+        self.queue.drain_below(limit, |cell, bucket| {
             any = true;
-            if let Some(list) = blocks.get_mut(block_of(&p)) {
-                list.push((p, bucket));
+            if let Some(list) = blocks.get_mut(block_of(&window.point(cell))) {
+                list.push((cell, bucket));
             }
         });
         if !any {
@@ -718,28 +719,29 @@ impl<R: Rng> Pixels<R> {
             // fails.
             loop {
                 let window = &self.window;
-                let Some((place, parent, cell)) = self
+                let Some((place, cell)) = self
                     .scratch
-                    .pick(limit, &mut self.rng, |p| window.prefetch(p))
+                    .pick(limit, &mut self.rng, |key| window.prefetch(key))
                 else {
                     break;
                 };
-                let cell = cell.unwrap_or_else(|| window.key(&parent));
+                let parent = window.point(cell);
                 match self.spawn((&parent, cell), (0, y), false) {
                     Some(child) => {
+                        let (child, cell) = child;
                         let key = child[1] + self.jitter * unit(&mut self.rng);
                         let bucket = self.queue.bucket(key);
                         let at = block_of(&child);
                         if !self.queue.starts_below(bucket, limit) {
-                            self.queue.push_in(child, bucket);
+                            self.queue.push_in(cell, bucket);
                         } else if at == b {
-                            self.scratch.push_in(child, bucket);
+                            self.scratch.push_in(cell, bucket);
                         } else if self.pending.get(at) == Some(&true)
                             && let Some(list) = self.blocks.get_mut(at)
                         {
-                            list.push((child, bucket));
+                            list.push((cell, bucket));
                         } else {
-                            self.queue.push_in(child, bucket);
+                            self.queue.push_in(cell, bucket);
                         }
                     }
                     None => self.scratch.retire(place),
@@ -761,9 +763,10 @@ impl<R: Rng> Pixels<R> {
         seeded
     }
 
-    fn push(&mut self, point: [f64; 2]) {
-        let key = point[1] + self.jitter * unit(&mut self.rng);
-        self.queue.push(point, key);
+    /// Queues the point `p`, stored in the cell with key `cell`.
+    fn push(&mut self, (p, cell): ([f64; 2], Queued)) {
+        let key = p[1] + self.jitter * unit(&mut self.rng);
+        self.queue.push(cell, key);
     }
 
     /// Paper scheme: a fresh seed, then Bridson inside the pixel only.
@@ -788,10 +791,10 @@ impl<R: Rng> Pixels<R> {
     }
 
     /// Up to `k` candidates around `parent`, whose cell key is `cell`;
-    /// stores and returns the first valid one. Candidates in pixels
-    /// already emitted (before `current` in scan order), outside the
-    /// raster or below the window are refused; with `only_current`, so is
-    /// any outside the current pixel.
+    /// stores and returns the first valid one, with its cell key.
+    /// Candidates in pixels already emitted (before `current` in scan
+    /// order), outside the raster or below the window are refused; with
+    /// `only_current`, so is any outside the current pixel.
     ///
     /// The batch sampler's loop (`sampler.rs`, `grow_cached`): offsets drawn
     /// ahead, and a [`ConflictCache`] of the parent's neighbours and of the
@@ -803,7 +806,7 @@ impl<R: Rng> Pixels<R> {
         (parent, cell): (&[f64; 2], usize),
         current: (usize, usize),
         only_current: bool,
-    ) -> Option<[f64; 2]> {
+    ) -> Option<([f64; 2], usize)> {
         // The rectangle candidates may land in: the current pixel, or the
         // rows from the current one to the window's last (pixels before
         // `current` in the current row are never refused by it: the sweep
@@ -877,7 +880,7 @@ impl<R: Rng> Pixels<R> {
             let pixel = (c[0] as u32 as usize, c[1] as u32 as usize);
             let list = only_current || self.exact.is_some();
             if self.window.insert((c, key), pixel, (list, only_current)) {
-                return Some(c);
+                return Some((c, key));
             }
         }
         None
@@ -903,7 +906,7 @@ impl<R: Rng> Pixels<R> {
                 .insert((p, key), (x, y), (paper || self.exact.is_some(), paper))
             {
                 if self.scheme != Scheme::Paper {
-                    self.push(p);
+                    self.push((p, key));
                 }
                 return true;
             }

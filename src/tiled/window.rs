@@ -409,11 +409,18 @@ impl Window {
         self.grid.key(p)
     }
 
-    /// Asks the cache for the grid cells around `p` (wide windows); `p`'s
-    /// cell key.
+    /// The point stored in the cell with key `key` (the sweep's queue
+    /// names its points by their cells).
     #[inline(always)]
-    pub(crate) fn prefetch(&self, p: &[f64; 2]) -> usize {
-        self.grid.prefetch(p)
+    pub(crate) fn point(&self, key: usize) -> [f64; 2] {
+        self.grid.point(key)
+    }
+
+    /// Asks the cache for the grid cells around the cell with key `key`
+    /// (wide windows).
+    #[inline(always)]
+    pub(crate) fn prefetch(&self, key: usize) {
+        self.grid.prefetch(key);
     }
 
     /// Hands up to `limit` stored points around the cell with key `key`
