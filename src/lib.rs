@@ -230,8 +230,10 @@
 //! 2-D and 3-D candidates are drawn without rejection, several ahead. Each
 //! pick is drawn two picks early, so that its neighbourhood is fetched from
 //! memory while earlier picks run (a cache hint), and on Linux the grid asks
-//! for transparent huge pages (a paging hint): the crate's two `unsafe`
-//! blocks. From 4-D up (or when the dense grid, full, would exceed the
+//! for transparent huge pages (a paging hint). On x86-64 the sampling loops
+//! are compiled a second time for AVX2 and run that way where the processor
+//! has it, with the same points (run-time dispatch). Those are the crate's
+//! three `unsafe` blocks. From 4-D up (or when the dense grid, full, would exceed the
 //! memory budget) a sparse grid is used, whose memory grows with the
 //! number of points; its search walks the cells within reach by branch and
 //! bound, nearest first, where the dense grid's stencil would check 504
@@ -279,6 +281,7 @@ mod varying;
 mod grid;
 // Helpers.
 mod budget;
+mod cpu;
 mod density;
 mod domain;
 mod error;

@@ -1,7 +1,7 @@
 //! A cache hint: start loading memory that a later step will read.
 //!
-//! One of the crate's two `unsafe` blocks (the other is
-//! `huge_pages.rs`). It pays: in 3-D the sampler waits
+//! One of the crate's three `unsafe` blocks (the others are
+//! `huge_pages.rs` and `cpu.rs`). It pays: in 3-D the sampler waits
 //! on memory (random picks land anywhere in a grid of tens of megabytes),
 //! and asking for the next picks' memory while this pick runs hides much of
 //! that wait (`docs/performance-journal.md` has the runs).

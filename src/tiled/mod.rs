@@ -38,6 +38,7 @@ mod window;
 
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
+use crate::cpu::dispatch;
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
 use crate::sampler::{DEFAULT_ATTEMPTS, check_radius_and_attempts};
@@ -602,6 +603,17 @@ impl<R: Rng> Pixels<R> {
     /// Sweep scheme: work the queue until no active point can reach row
     /// `y`, seeding pixels of the row that no process has come near.
     fn finish_row(&mut self, y: usize) {
+        // The loop compiled for AVX2 where the processor has it
+        // (`cpu.rs`): the same points, faster.
+        dispatch(
+            #[inline(always)]
+            || self.sweep_past(y),
+        );
+    }
+
+    /// [`Self::finish_row`]'s work, inlined into each copy.
+    #[inline(always)]
+    fn sweep_past(&mut self, y: usize) {
         if !self.started {
             self.started = true;
             self.seed_row(0);
@@ -631,6 +643,7 @@ impl<R: Rng> Pixels<R> {
 
     /// Works every queued point whose bucket starts below `limit` until it
     /// fails, across the whole width (narrow windows).
+    #[inline(always)]
     fn work_band(&mut self, limit: f64, y: usize) {
         // Bridson's loop over the lowest band: a random active point of
         // it throws its candidates; it stays active until it fails.
@@ -654,6 +667,7 @@ impl<R: Rng> Pixels<R> {
     /// fails, block of columns by block of columns (wide windows, see
     /// [`BLOCK_CELLS`]); whether there was any. A child that lands in a
     /// block already worked is queued, for the next call.
+    #[inline(always)]
     fn work_blocks(&mut self, limit: f64, y: usize) -> bool {
         let width = self.block_width;
         let shift = width * unit(&mut self.rng);
@@ -1019,6 +1033,47 @@ fn near_offsets(radius: f64, size: usize) -> Vec<(isize, isize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sweep compiled for AVX2 (`cpu.rs`) streams the portable sweep's
+    /// points bit for bit: narrow and wide windows, exact mode by both
+    /// methods.
+    #[test]
+    fn both_copies_stream_the_same_points() {
+        use crate::cpu::tests::{both_copies, first_difference};
+        let stream = |tiled: &Tiled| {
+            let mut all = Vec::new();
+            let mut points = Vec::new();
+            let mut pixels = tiled.pixels_seeded(4);
+            while pixels.next_into(&mut points).is_some() {
+                all.extend(points.iter().map(|p| p.map(f64::to_bits)));
+            }
+            all
+        };
+        let narrow = Tiled::builder(24, 20).per_pixel(4.0).build().unwrap();
+        let wide = Tiled::builder(600, 3).per_pixel(4.0).build().unwrap();
+        assert!(wide.plan.rows_per_round >= 1, "a wide window");
+        let exact = |method| {
+            Tiled::builder(20, 16)
+                .exact(4)
+                .exact_method(method)
+                .build()
+                .unwrap()
+        };
+        for (what, tiled) in [
+            ("narrow", narrow),
+            ("wide", wide),
+            ("exact, elimination", exact(ExactMethod::Eliminate)),
+            ("exact, random", exact(ExactMethod::Random)),
+        ] {
+            let (a, b) = both_copies(|| stream(&tiled));
+            assert!(a.len() > 1000, "{what}: {} points", a.len());
+            assert!(
+                a == b,
+                "{what}: first difference at {:?}",
+                first_difference(&a, &b)
+            );
+        }
+    }
 
     /// Wide windows' rounds of blocks, forced on a small raster with
     /// blocks a few pixels wide: every pixel comes in scan order holding
