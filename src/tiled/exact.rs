@@ -287,6 +287,16 @@ struct Blockers {
     items: [u32; MAX_BLOCKERS],
 }
 
+/// A live band point in the local grid's order, for
+/// [`Exact::pair_weights`].
+#[derive(Clone, Copy, Debug)]
+struct ByCell {
+    p: [f64; 2],
+    over: bool,
+    scale: f64,
+    weight: f64,
+}
+
 /// Exact mode's settings and its scratch arrays, reused from row to row.
 #[derive(Debug)]
 pub(crate) struct Exact {
@@ -324,6 +334,10 @@ pub(crate) struct Exact {
     cell_start: Vec<usize>,
     cell_of: Vec<usize>,
     cell_items: Vec<u32>,
+    /// [`Self::pair_weights`]' copy of the live points in the local grid's
+    /// order (`cell_items`): coordinates, whether elimination may remove
+    /// it, its pixel's `scale`, and its weight so far.
+    by_cell: Vec<ByCell>,
     /// Elimination: weights and edge factors ([`Self::edge_factor`]).
     weight: Vec<f64>,
     factor: Vec<f64>,
@@ -423,6 +437,7 @@ impl Exact {
             cell_start: Vec::new(),
             cell_of: Vec::new(),
             cell_items: Vec::new(),
+            by_cell: Vec::new(),
             weight: Vec::new(),
             factor: Vec::new(),
             over: Vec::new(),
@@ -472,10 +487,16 @@ impl Exact {
 
     fn weight_of(&self, d2: f64) -> f64 {
         if d2 < self.reach * self.reach {
-            (1.0 - d2.sqrt() * self.inv_reach).powi(ALPHA)
+            self.weight_in_reach(d2)
         } else {
             0.0
         }
+    }
+
+    /// [`Self::weight_of`] for `d2` below the reach squared.
+    #[inline(always)]
+    fn weight_in_reach(&self, d2: f64) -> f64 {
+        (1.0 - d2.sqrt() * self.inv_reach).powi(ALPHA)
     }
 
     /// Settles row `y`: exactly `n` points in each of its pixels, stored as
@@ -1019,13 +1040,29 @@ impl Exact {
         let columns = width * self.cells;
         let rows = band_rows * self.cells;
         let k = self.cell_reach;
-        let mut weight = core::mem::take(&mut self.weight);
+        // The live points in grid order, so that a cell row's points are
+        // read in sequence, without the two indirections (point, pixel).
+        let mut by_cell = core::mem::take(&mut self.by_cell);
+        by_cell.clear();
+        by_cell.extend(self.cell_items.iter().map(|&i| {
+            let i = i as usize;
+            let p = self.points.get(i).copied().unwrap_or([0.0; 2]);
+            let over = self.over.get(i) == Some(&true);
+            let scale = self
+                .pixel
+                .get(i)
+                .and_then(|&b| self.scale.get(b as usize))
+                .copied()
+                .unwrap_or(1.0);
+            ByCell {
+                p,
+                over,
+                scale,
+                weight: 0.0,
+            }
+        }));
         for (a, &i) in self.cell_items.iter().enumerate() {
-            let (Some(&c), Some(&p), Some(&over_i)) = (
-                self.cell_of.get(i as usize),
-                self.points.get(i as usize),
-                self.over.get(i as usize),
-            ) else {
+            let Some(&c) = self.cell_of.get(i as usize) else {
                 continue;
             };
             let (cx, cy) = (c % columns, c / columns);
@@ -1033,9 +1070,12 @@ impl Exact {
                 // Row `y + 1` from here on.
                 break;
             }
-            // `i` lies in row `y`, so its own terms count in full on its
-            // neighbours' weights (scale 1).
-            let mut w = weight.get(i as usize).copied().unwrap_or(0.0);
+            let Some(&ByCell {
+                p, over: over_i, ..
+            }) = by_cell.get(a)
+            else {
+                continue;
+            };
             let (x0, x1) = (cx.saturating_sub(k), (cx + k).min(columns - 1));
             for yy in cy..=(cy + k).min(rows - 1) {
                 let first = if yy == cy {
@@ -1048,27 +1088,44 @@ impl Exact {
                     .get(yy * columns + x1 + 1)
                     .copied()
                     .unwrap_or(0);
-                for &j in self.cell_items.get(first..last).unwrap_or(&[]) {
-                    let over_j = self.over.get(j as usize) == Some(&true);
-                    if (over_i || over_j)
-                        && let (Some(q), Some(&b)) =
-                            (self.points.get(j as usize), self.pixel.get(j as usize))
-                    {
-                        let d2 = distance_squared(&p, q);
-                        if d2 < reach2 {
-                            let t = self.weight_of(d2);
-                            w += t * self.scale.get(b as usize).copied().unwrap_or(1.0);
-                            if over_j && let Some(wj) = weight.get_mut(j as usize) {
-                                *wj += t;
-                            }
-                        }
-                    }
+                let Some((head, tail)) = by_cell.split_at_mut_checked(first) else {
+                    continue;
+                };
+                let (Some(this), Some(others)) =
+                    (head.get_mut(a), tail.get_mut(..last.saturating_sub(first)))
+                else {
+                    continue;
+                };
+                // Without a branch: a pair out of reach, or with neither
+                // end removable, adds a term of +0.0, which leaves every
+                // sum's bits as they are (sums of terms >= 0 are never
+                // -0.0).
+                let mut w = this.weight;
+                for q in others {
+                    let d2 = distance_squared(&p, &q.p);
+                    let term = self.weight_in_reach(d2);
+                    let t = if d2 < reach2 && (over_i || q.over) {
+                        term
+                    } else {
+                        0.0
+                    };
+                    w += t * q.scale;
+                    q.weight += t;
                 }
-            }
-            if over_i && let Some(slot) = weight.get_mut(i as usize) {
-                *slot = w;
+                this.weight = w;
             }
         }
+        // Back to the points' order; only removable points' weights are
+        // read again.
+        let mut weight = core::mem::take(&mut self.weight);
+        for (&i, q) in self.cell_items.iter().zip(&by_cell) {
+            if q.over
+                && let Some(slot) = weight.get_mut(i as usize)
+            {
+                *slot = q.weight;
+            }
+        }
+        self.by_cell = by_cell;
         self.weight = weight;
     }
 
