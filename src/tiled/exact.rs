@@ -297,6 +297,18 @@ struct ByCell {
     weight: f64,
 }
 
+/// What the darts of one short pixel are checked against
+/// ([`Exact::best_dart`]), copied out once since nothing changes while they
+/// are weighed: the darts already placed in the columns around, the final
+/// points above near it, and the live band points of the pixels around
+/// with their index and pixel, in [`Exact::near_pixel`]'s order.
+#[derive(Debug, Default)]
+struct DartScratch {
+    darts: Vec<[f64; 2]>,
+    above: Vec<[f64; 2]>,
+    near: Vec<([f64; 2], u32, u32)>,
+}
+
 /// Exact mode's settings and its scratch arrays, reused from row to row.
 #[derive(Debug)]
 pub(crate) struct Exact {
@@ -338,6 +350,9 @@ pub(crate) struct Exact {
     /// order (`cell_items`): coordinates, whether elimination may remove
     /// it, its pixel's `scale`, and its weight so far.
     by_cell: Vec<ByCell>,
+    /// [`Self::best_dart`]'s copy of what its darts are checked against,
+    /// gathered once for all of them.
+    dart_scratch: DartScratch,
     /// Elimination: weights and edge factors ([`Self::edge_factor`]).
     weight: Vec<f64>,
     factor: Vec<f64>,
@@ -438,6 +453,7 @@ impl Exact {
             cell_of: Vec::new(),
             cell_items: Vec::new(),
             by_cell: Vec::new(),
+            dart_scratch: DartScratch::default(),
             weight: Vec::new(),
             factor: Vec::new(),
             over: Vec::new(),
@@ -865,19 +881,43 @@ impl Exact {
     /// The dart of `darts` with the fewest blockers that `take` may remove
     /// (at most [`MAX_BLOCKERS`]), the first such; `None` if none can go.
     fn best_dart(
-        &self,
+        &mut self,
         window: &Window,
         darts: &[[f64; 2]],
         (x, y): (usize, usize),
         (width, band_rows): (usize, usize),
         take: Take,
     ) -> Option<([f64; 2], Blockers)> {
+        let mut scratch = core::mem::take(&mut self.dart_scratch);
+        scratch.darts.clear();
+        scratch.darts.extend(
+            self.dart_columns
+                .get(columns_around(x, width))
+                .unwrap_or(&[])
+                .iter()
+                .flatten()
+                .filter_map(|&i| self.points.get(i as usize).copied()),
+        );
+        scratch.above.clear();
+        scratch
+            .above
+            .extend(self.final_above(window, y, x, width).copied());
+        scratch.near.clear();
+        self.near_pixel(x, width, band_rows, |i| {
+            if self.alive.get(i as usize) == Some(&true)
+                && let (Some(&q), Some(&b)) =
+                    (self.points.get(i as usize), self.pixel.get(i as usize))
+            {
+                scratch.near.push((q, i, b));
+            }
+            true
+        });
         let mut best: Option<([f64; 2], Blockers)> = None;
         for d in darts {
             // Only a dart with fewer blockers than the best so far can be
             // taken: the search gives up on the others early.
             let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
-            if let Some(b) = self.blockers(window, d, (x, y), (width, band_rows), (take, cap))
+            if let Some(b) = self.blockers(&scratch, d, (x, y), (take, cap))
                 && best.is_none_or(|(_, c)| b.count < c.count)
             {
                 best = Some((*d, b));
@@ -886,6 +926,7 @@ impl Exact {
                 }
             }
         }
+        self.dart_scratch = scratch;
         best
     }
 
@@ -931,52 +972,31 @@ impl Exact {
     /// The band points closer than `r` to dart `d` in pixel `(x, y)`, if
     /// they may all be removed: each in another pixel, which `take` allows
     /// to lose it, at most `cap` (and [`MAX_BLOCKERS`]); and no final point
-    /// above or dart is that close.
+    /// above or dart is that close. `near` holds what these are looked for
+    /// among ([`Self::best_dart`]).
     fn blockers(
         &self,
-        window: &Window,
+        near: &DartScratch,
         d: &[f64; 2],
         (x, y): (usize, usize),
-        (width, band_rows): (usize, usize),
         (take, cap): (Take, usize),
     ) -> Option<Blockers> {
         let r2 = self.radius_squared;
-        let columns = self
-            .dart_columns
-            .get(columns_around(x, width))
-            .unwrap_or(&[]);
-        for &i in columns.iter().flatten() {
-            if self
-                .points
-                .get(i as usize)
-                .is_some_and(|q| distance_squared(d, q) < r2)
-            {
-                return None;
-            }
+        if near.darts.iter().any(|q| distance_squared(d, q) < r2) {
+            return None;
         }
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
-        if d[1] - (y as f64) < r2.sqrt()
-            && self
-                .final_above(window, y, x, width)
-                .any(|q| distance_squared(d, q) < r2)
-        {
+        if d[1] - (y as f64) < r2.sqrt() && near.above.iter().any(|q| distance_squared(d, q) < r2) {
             return None;
         }
         let mut found = Blockers {
             count: 0,
             items: [0; MAX_BLOCKERS],
         };
-        let mut ok = true;
-        self.near_pixel(x, width, band_rows, |i| {
-            if self.alive.get(i as usize) != Some(&true)
-                || self
-                    .points
-                    .get(i as usize)
-                    .is_none_or(|q| distance_squared(d, q) >= r2)
-            {
-                return true;
+        for &(q, i, b32) in &near.near {
+            if distance_squared(d, &q) >= r2 {
+                continue;
             }
-            let b32 = self.pixel.get(i as usize).copied().unwrap_or(0);
             let b = b32 as usize;
             // Points this dart already takes from pixel b, this one included.
             let taken = 1 + found
@@ -994,15 +1014,15 @@ impl Exact {
                     Take::Unsettled => left >= self.n + taken || b > x,
                     Take::Any => true,
                 };
-            if let (true, Some(slot)) = (may, found.items.get_mut(found.count)) {
-                *slot = i;
-                found.count += 1;
-            } else {
-                ok = false;
+            match (may, found.items.get_mut(found.count)) {
+                (true, Some(slot)) => {
+                    *slot = i;
+                    found.count += 1;
+                }
+                _ => return None,
             }
-            ok
-        });
-        ok.then_some(found)
+        }
+        Some(found)
     }
 
     /// Step 3's starting weights, without the final points above: for
