@@ -202,9 +202,11 @@
 //! A `u64` seed ([`PoissonDisk::iter_seeded`]) gives the same points, in the
 //! same order, on every run and platform: the sampler uses only integer
 //! operations and correctly rounded `+ - × ÷ √`, never `sin`, `ln` or
-//! `powf`, whose last bit varies between math libraries. Any `rand::Rng`
-//! can be passed instead ([`PoissonDisk::iter`]). Value-breaking changes to
-//! the stream for a seed are flagged in the CHANGELOG.
+//! `powf`, whose last bit varies between math libraries; the copy of the
+//! loops compiled for AVX2 (used where the processor has it) rounds every
+//! operation as the portable one does. Any `rand::Rng` can be passed
+//! instead ([`PoissonDisk::iter`]). Value-breaking changes to the stream
+//! for a seed are flagged in the CHANGELOG.
 //!
 //! # Feature flags
 //! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`]
@@ -233,8 +235,8 @@
 //! for transparent huge pages (a paging hint). On x86-64 the sampling loops
 //! are compiled a second time for AVX2 and run that way where the processor
 //! has it, with the same points (run-time dispatch). Those are the crate's
-//! three `unsafe` blocks. From 4-D up (or when the dense grid, full, would exceed the
-//! memory budget) a sparse grid is used, whose memory grows with the
+//! three `unsafe` blocks. From 4-D up (or when the dense grid, full, would
+//! exceed the memory budget) a sparse grid is used, whose memory grows with the
 //! number of points; its search walks the cells within reach by branch and
 //! bound, nearest first, where the dense grid's stencil would check 504
 //! cells in 4-D. `README.md` has measured throughput against a textbook
