@@ -81,14 +81,28 @@ pub(crate) mod tests {
         (portable, f())
     }
 
-    /// Where two lists first differ (an index, or their lengths).
-    pub(crate) fn first_difference<T: PartialEq>(
-        a: &[T],
-        b: &[T],
-    ) -> Option<(usize, usize, usize)> {
-        let at = a.iter().zip(b).position(|(x, y)| x != y);
-        at.or((a.len() != b.len()).then_some(a.len().min(b.len())))
-            .map(|i| (i, a.len(), b.len()))
+    /// Asserts that both copies ([`both_copies`]) made the same list, of
+    /// more than `at_least` items; else says where the lists first differ
+    /// (an index and both lengths).
+    pub(crate) fn assert_same<T: PartialEq>(
+        what: &str,
+        (portable, dispatched): (Vec<T>, Vec<T>),
+        at_least: usize,
+    ) {
+        assert!(
+            portable.len() > at_least,
+            "{what}: {} items",
+            portable.len()
+        );
+        let at = portable.iter().zip(&dispatched).position(|(x, y)| x != y);
+        let lengths_differ = portable.len() != dispatched.len();
+        let first = at.or(lengths_differ.then_some(portable.len().min(dispatched.len())));
+        assert!(
+            first.is_none(),
+            "{what}: first difference at {first:?} (lengths {} and {})",
+            portable.len(),
+            dispatched.len()
+        );
     }
 
     #[test]

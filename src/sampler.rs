@@ -1184,7 +1184,7 @@ mod tests {
     /// the portable copy and the test checks only that a seed repeats.
     #[test]
     fn both_copies_make_the_same_points() {
-        use crate::cpu::tests::{both_copies, first_difference};
+        use crate::cpu::tests::{assert_same, both_copies};
         fn run<const N: usize>(
             extent: [f64; N],
             periodic: bool,
@@ -1200,27 +1200,12 @@ mod tests {
         for layout in [GridLayout::Dense, GridLayout::Sparse] {
             for periodic in [false, true] {
                 let what = format!("{layout:?}, periodic {periodic}");
-                let (a, b) = both_copies(|| run([1.0, 0.7], periodic, 0.02, layout));
-                assert!(a.len() > 500, "{what}: {} points", a.len());
-                assert!(
-                    a == b,
-                    "2-D, {what}: first difference at {:?}",
-                    first_difference(&a, &b)
-                );
-                let (a, b) = both_copies(|| run([1.0; 3], periodic, 0.08, layout));
-                assert!(a.len() > 500, "{what}: {} points", a.len());
-                assert!(
-                    a == b,
-                    "3-D, {what}: first difference at {:?}",
-                    first_difference(&a, &b)
-                );
-                let (a, b) = both_copies(|| run([1.0; 4], periodic, 0.25, layout));
-                assert!(a.len() > 100, "{what}: {} points", a.len());
-                assert!(
-                    a == b,
-                    "4-D, {what}: first difference at {:?}",
-                    first_difference(&a, &b)
-                );
+                let plane = both_copies(|| run([1.0, 0.7], periodic, 0.02, layout));
+                assert_same(&format!("2-D, {what}"), plane, 500);
+                let cube = both_copies(|| run([1.0; 3], periodic, 0.08, layout));
+                assert_same(&format!("3-D, {what}"), cube, 500);
+                let tesseract = both_copies(|| run([1.0; 4], periodic, 0.25, layout));
+                assert_same(&format!("4-D, {what}"), tesseract, 100);
             }
         }
     }

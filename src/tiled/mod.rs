@@ -1039,7 +1039,7 @@ mod tests {
     /// methods.
     #[test]
     fn both_copies_stream_the_same_points() {
-        use crate::cpu::tests::{both_copies, first_difference};
+        use crate::cpu::tests::{assert_same, both_copies};
         let stream = |tiled: &Tiled| {
             let mut all = Vec::new();
             let mut points = Vec::new();
@@ -1065,13 +1065,7 @@ mod tests {
             ("exact, elimination", exact(ExactMethod::Eliminate)),
             ("exact, random", exact(ExactMethod::Random)),
         ] {
-            let (a, b) = both_copies(|| stream(&tiled));
-            assert!(a.len() > 1000, "{what}: {} points", a.len());
-            assert!(
-                a == b,
-                "{what}: first difference at {:?}",
-                first_difference(&a, &b)
-            );
+            assert_same(what, both_copies(|| stream(&tiled)), 1000);
         }
     }
 
