@@ -298,8 +298,8 @@ struct ByCell {
 }
 
 /// What the darts of one short pixel are checked against
-/// ([`Exact::best_dart`]), copied out once since nothing changes while they
-/// are weighed: the darts already placed in the columns around, the final
+/// ([`Exact::best_dart`]), copied out once since nothing changes until one
+/// is placed: the darts already placed in the columns around, the final
 /// points above near it, and the live band points of the pixels around
 /// with their index and pixel, in [`Exact::near_pixel`]'s order.
 #[derive(Debug, Default)]
@@ -350,8 +350,8 @@ pub(crate) struct Exact {
     /// order (`cell_items`): coordinates, whether elimination may remove
     /// it, its pixel's `scale`, and its weight so far.
     by_cell: Vec<ByCell>,
-    /// [`Self::best_dart`]'s copy of what its darts are checked against,
-    /// gathered once for all of them.
+    /// What a short pixel's darts are checked against
+    /// ([`Self::gather_blockers`]), reused from pixel to pixel.
     dart_scratch: DartScratch,
     /// Elimination: weights and edge factors ([`Self::edge_factor`]).
     weight: Vec<f64>,
@@ -803,6 +803,8 @@ impl Exact {
         let (fx, fy) = (x as f64, y as f64);
         let mut darts = [[0.0; 2]; DARTS_MORE];
         let mut thrown = 0;
+        let mut near = core::mem::take(&mut self.dart_scratch);
+        self.gather_blockers(window, (x, y), (width, band_rows), &mut near);
         // Strict with a few darts, then lenient with them, then lenient
         // with many, then (if allowed) taking from any pixel: most short
         // pixels take the first.
@@ -822,14 +824,9 @@ impl Exact {
                 rng,
             );
             thrown = thrown.max(count);
-            let found = self.best_dart(
-                window,
-                darts.get(..count).unwrap_or(&[]),
-                (x, y),
-                (width, band_rows),
-                take,
-            );
+            let found = self.best_dart(&near, darts.get(..count).unwrap_or(&[]), (x, y), take);
             if let Some((d, b)) = found {
+                self.dart_scratch = near;
                 self.take_dart(window, d, b, x);
                 return 0;
             }
@@ -841,11 +838,13 @@ impl Exact {
         };
         for _ in 0..RESCUE_ROUNDS {
             throw_darts(&mut darts, (fx, fy), rng);
-            if let Some((d, b)) = self.best_dart(window, &darts, (x, y), (width, band_rows), take) {
+            if let Some((d, b)) = self.best_dart(&near, &darts, (x, y), take) {
+                self.dart_scratch = near;
                 self.take_dart(window, d, b, x);
                 return 0;
             }
         }
+        self.dart_scratch = near;
         // A top-up: the dart farthest from every point that stays, looked
         // for as far as the local grid reaches (built for the first top-up
         // of the band: they are rare).
@@ -881,43 +880,18 @@ impl Exact {
     /// The dart of `darts` with the fewest blockers that `take` may remove
     /// (at most [`MAX_BLOCKERS`]), the first such; `None` if none can go.
     fn best_dart(
-        &mut self,
-        window: &Window,
+        &self,
+        near: &DartScratch,
         darts: &[[f64; 2]],
         (x, y): (usize, usize),
-        (width, band_rows): (usize, usize),
         take: Take,
     ) -> Option<([f64; 2], Blockers)> {
-        let mut scratch = core::mem::take(&mut self.dart_scratch);
-        scratch.darts.clear();
-        scratch.darts.extend(
-            self.dart_columns
-                .get(columns_around(x, width))
-                .unwrap_or(&[])
-                .iter()
-                .flatten()
-                .filter_map(|&i| self.points.get(i as usize).copied()),
-        );
-        scratch.above.clear();
-        scratch
-            .above
-            .extend(self.final_above(window, y, x, width).copied());
-        scratch.near.clear();
-        self.near_pixel(x, width, band_rows, |i| {
-            if self.alive.get(i as usize) == Some(&true)
-                && let (Some(&q), Some(&b)) =
-                    (self.points.get(i as usize), self.pixel.get(i as usize))
-            {
-                scratch.near.push((q, i, b));
-            }
-            true
-        });
         let mut best: Option<([f64; 2], Blockers)> = None;
         for d in darts {
             // Only a dart with fewer blockers than the best so far can be
             // taken: the search gives up on the others early.
             let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
-            if let Some(b) = self.blockers(&scratch, d, (x, y), (take, cap))
+            if let Some(b) = self.blockers(near, d, (x, y), (take, cap))
                 && best.is_none_or(|(_, c)| b.count < c.count)
             {
                 best = Some((*d, b));
@@ -926,8 +900,41 @@ impl Exact {
                 }
             }
         }
-        self.dart_scratch = scratch;
         best
+    }
+
+    /// What the darts of the short pixel `(x, y)` are checked against, into
+    /// `near` ([`DartScratch`]): gathered once per dart placed, since
+    /// nothing it holds changes until one is.
+    fn gather_blockers(
+        &self,
+        window: &Window,
+        (x, y): (usize, usize),
+        (width, band_rows): (usize, usize),
+        near: &mut DartScratch,
+    ) {
+        near.darts.clear();
+        near.darts.extend(
+            self.dart_columns
+                .get(columns_around(x, width))
+                .unwrap_or(&[])
+                .iter()
+                .flatten()
+                .filter_map(|&i| self.points.get(i as usize).copied()),
+        );
+        near.above.clear();
+        near.above
+            .extend(self.final_above(window, y, x, width).copied());
+        near.near.clear();
+        self.near_pixel(x, width, band_rows, |i| {
+            if self.alive.get(i as usize) == Some(&true)
+                && let (Some(&q), Some(&b)) =
+                    (self.points.get(i as usize), self.pixel.get(i as usize))
+            {
+                near.near.push((q, i, b));
+            }
+            true
+        });
     }
 
     /// Places dart `d` in column `x`, its blockers `b` removed.
@@ -1116,8 +1123,10 @@ impl Exact {
                 else {
                     continue;
                 };
-                // Without a branch: a pair out of reach, or with neither
-                // end removable, adds a term of +0.0, which leaves every
+                // `i` lies in row `y`, so its own terms count in full on
+                // its neighbours' weights (scale 1). Without a branch: a
+                // pair out of reach, or with neither end removable, adds a
+                // term of +0.0, which leaves every
                 // sum's bits as they are (sums of terms >= 0 are never
                 // -0.0).
                 let mut w = this.weight;
