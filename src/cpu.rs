@@ -46,21 +46,25 @@ fn v3<T>(f: impl FnOnce() -> T) -> T {
 }
 
 /// Whether this processor has every feature [`v3`] is compiled with (and
-/// the tests have not turned the copy off on this thread).
+/// the tests have not turned the copy off on this thread). Asked once per
+/// process: the loops call this once per point.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn has_v3() -> bool {
+    static HAS_V3: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     #[cfg(test)]
     if tests::PORTABLE.with(core::cell::Cell::get) {
         return false;
     }
-    std::is_x86_feature_detected!("avx")
-        && std::is_x86_feature_detected!("avx2")
-        && std::is_x86_feature_detected!("fma")
-        && std::is_x86_feature_detected!("bmi1")
-        && std::is_x86_feature_detected!("bmi2")
-        && std::is_x86_feature_detected!("lzcnt")
-        && std::is_x86_feature_detected!("popcnt")
+    *HAS_V3.get_or_init(|| {
+        std::is_x86_feature_detected!("avx")
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+            && std::is_x86_feature_detected!("bmi1")
+            && std::is_x86_feature_detected!("bmi2")
+            && std::is_x86_feature_detected!("lzcnt")
+            && std::is_x86_feature_detected!("popcnt")
+    })
 }
 
 #[cfg(test)]
