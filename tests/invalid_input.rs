@@ -6,7 +6,7 @@ mod common;
 
 use bridson::{
     Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, MAX_ATTEMPTS, PoissonDisk,
-    PoissonDisk2,
+    PoissonDisk2, Tiled,
 };
 
 fn unit_square() -> Domain<2> {
@@ -278,6 +278,29 @@ fn zero_attempts() {
         "k = 0"
     );
     assert!(builder.attempts(1).build().is_ok(), "k = 1 is fine");
+}
+
+/// The streaming builder checks the radius it derives from the samples per
+/// pixel before `k`, as its `# Errors` list says, whatever `k` is: a
+/// finite, positive but tiny count per pixel gives a radius past `1e150`.
+/// Found by the `streaming` fuzz target, whose own model had expected
+/// `ZeroAttempts` (`fuzz/corpus/streaming/regression-per-pixel-radius-before-zero-k`).
+#[test]
+fn a_radius_from_samples_per_pixel_is_checked_before_k() {
+    let tiny = Tiled::builder(1, 1 << 20).per_pixel(f64::MIN_POSITIVE);
+    for k in [0, 1, 30, MAX_ATTEMPTS + 1] {
+        assert_eq!(
+            tiny.attempts(k).build().err(),
+            Some(Error::InvalidRadius),
+            "k = {k}"
+        );
+    }
+    let fine = Tiled::builder(1, 1 << 20).per_pixel(4.0);
+    assert_eq!(
+        fine.attempts(0).build().err(),
+        Some(Error::ZeroAttempts),
+        "a valid radius, k = 0"
+    );
 }
 
 /// Counts the generator calls the sampler makes.

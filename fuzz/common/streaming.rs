@@ -296,6 +296,28 @@ impl Inputs {
         }
     }
 
+    /// Where the radius lies for samples per pixel at `k != 30`, whose
+    /// exact value the docs leave to count mode's density factor (within
+    /// [`DENSITY_FACTOR`]): `r30 · sqrt(factor)` over the factor's range.
+    fn radius_range(&self) -> Option<(f64, f64)> {
+        if self.documented_radius().is_some() {
+            return None;
+        }
+        let at30 = self.radius_at_30()?;
+        Some((
+            at30 * DENSITY_FACTOR.start().sqrt(),
+            at30 * DENSITY_FACTOR.end().sqrt(),
+        ))
+    }
+
+    /// Whether [`Error::InvalidRadius`] is a right answer though not the
+    /// one [`Self::expected_error`] names: the radius range straddles a
+    /// limit, so the radius may be out of range.
+    fn radius_may_be_invalid(&self) -> bool {
+        self.radius_range()
+            .is_some_and(|(lo, hi)| lo < 1e-150 || hi > 1e150)
+    }
+
     fn budget(&self) -> u64 {
         self.budget.unwrap_or(DEFAULT_MAX_WINDOW_BYTES)
     }
@@ -338,6 +360,16 @@ impl Inputs {
         {
             return Some(Error::InvalidRadius);
         }
+        // Samples per pixel at another k: the radius is only known within
+        // the density factor's range, but one wholly out of range is
+        // refused before k is looked at (k = 0 included: the docs check
+        // the radius first).
+        if self
+            .radius_range()
+            .is_some_and(|(lo, hi)| hi < 1e-150 || lo > 1e150)
+        {
+            return Some(Error::InvalidRadius);
+        }
         if self.k() == 0 {
             return Some(Error::ZeroAttempts);
         }
@@ -357,6 +389,16 @@ pub(crate) fn run(data: &[u8]) {
     let builder = inputs.builder(None, None);
     let tiled = match builder.build() {
         Ok(t) => t,
+        // Checked after the raster and the samples per pixel, before k.
+        Err(Error::InvalidRadius)
+            if inputs.radius_may_be_invalid()
+                && !matches!(
+                    expected,
+                    Some(Error::EmptyRaster { .. } | Error::InvalidPerPixel)
+                ) =>
+        {
+            return;
+        }
         Err(e) => {
             check_build_error(&ctx, e, expected, inputs.budget());
             return;
