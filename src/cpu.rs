@@ -7,16 +7,18 @@
 //! and `huge_pages.rs`). It pays where the time goes in 2-D: the offsets
 //! drawn eight at a time and the conflict cache's eight-slot check run four
 //! and eight lanes to a vector instead of two and four: 18 % fewer
-//! instructions in 2-D, 3–6 % less time there and 11 % in the streaming
-//! sweep, nothing in memory-bound 3-D (`docs/performance-journal.md`,
-//! "Run-time dispatch to AVX2").
+//! instructions in 2-D, 3–6 % less time there, 11 % in the streaming
+//! sweep and 6–11 % for a varying radius (the pick: 16 % fewer
+//! instructions), nothing in memory-bound 3-D with a fixed radius
+//! (`docs/performance-journal.md`, "Run-time dispatch to AVX2").
 //!
 //! **The same points.** Only the instructions the compiler may choose
 //! change, never the arithmetic: Rust does not contract `a * b + c` into a
 //! fused multiply-add on its own (only `mul_add` does, which the sampling
 //! code does not call), so every `f64` operation rounds as it does in the
 //! portable copy. Unit tests run both copies in one process and compare
-//! the bits (`both_copies_*` in `sampler.rs` and `tiled/mod.rs`), and
+//! the bits (`both_copies_*` in `sampler.rs`, `tiled/mod.rs` and
+//! `varying/mod.rs`), and
 //! `tests/value_stability.rs`, run on such a machine, holds the dispatched
 //! copy to the values pinned before it existed.
 

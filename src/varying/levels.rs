@@ -519,7 +519,7 @@ impl<const N: usize> Levels<N> {
     }
 
     /// A stored point closer to `c` than `max(rc, its radius)`, if any.
-    #[inline]
+    #[inline(always)]
     pub(super) fn blocked(
         &mut self,
         points: &[Stored<N>],
@@ -552,7 +552,7 @@ impl<const N: usize> Levels<N> {
     }
 
     /// A point of level `j` closer to `c` than `max(rc, its radius)`.
-    #[inline]
+    #[inline(always)]
     fn search(
         &mut self,
         j: usize,
@@ -669,6 +669,7 @@ impl<const N: usize> Levels<N> {
     /// band's top), where no periodic wrap is needed. Two passes, as the
     /// fixed radius's seed, so that the points' loads go out together:
     /// the occupied cells without a branch, then their points.
+    #[inline(always)]
     pub(super) fn seed(
         &mut self,
         points: &[Stored<N>],

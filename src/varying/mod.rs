@@ -26,6 +26,7 @@ mod lists;
 
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
+use crate::cpu::dispatch;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
@@ -81,6 +82,7 @@ enum Index<const N: usize> {
 }
 
 impl<const N: usize> Index<N> {
+    #[inline(always)]
     fn blocked(
         &mut self,
         points: &[Stored<N>],
@@ -271,6 +273,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
     }
 
     /// `r(p)`: the field clamped to `r_min ..= r_max`, NaN as `r_max`.
+    #[inline(always)]
     fn radius_at(&self, p: &[f64; N]) -> f64 {
         let r = (self.field)(p);
         if r.is_nan() {
@@ -463,10 +466,18 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
             }
             // A conflict cache sized for the dimension, as the fixed
             // radius's: 8 slots in 2-D, 16 from 3-D up.
+            // The pick compiled for AVX2 where the processor has it
+            // (`cpu.rs`): the same points.
             let step = if N <= 2 {
-                self.pick::<8>(i)
+                dispatch(
+                    #[inline(always)]
+                    || self.pick::<8>(i),
+                )
             } else {
-                self.pick::<16>(i)
+                dispatch(
+                    #[inline(always)]
+                    || self.pick::<16>(i),
+                )
             };
             match step {
                 Step::Made(p) => return Some(p),
@@ -517,6 +528,51 @@ mod tests {
             .collect();
         assert!(levels.len() > 20, "{N}-D: {} points", levels.len());
         assert_eq!(levels, lists, "{N}-D periodic {periodic} sphere {sphere}");
+    }
+
+    /// The pick as compiled for AVX2 (where this processor has it) and as
+    /// compiled for the baseline make the same points, bit for bit, on
+    /// both indexes, bounded and periodic, with either candidates.
+    #[test]
+    fn both_copies_make_the_same_points() {
+        use crate::cpu::tests::{assert_same, both_copies};
+        fn run<const N: usize>(periodic: bool, sphere: bool, levels: bool) -> Vec<[u64; N]> {
+            let domain = Domain::from_extent([1.0; N])
+                .unwrap()
+                .with_periodic([periodic; N]);
+            let r_max = [0.0, 0.01, 0.04, 0.12, 0.3][N];
+            let kind = if sphere {
+                crate::Candidates::Sphere
+            } else {
+                crate::Candidates::Annulus
+            };
+            let sampler = PoissonDisk::builder(domain, r_max)
+                .candidates(kind)
+                .build()
+                .unwrap();
+            let r_min = r_max / 3.0;
+            let field = |p: &[f64; N]| {
+                let t = p.iter().sum::<f64>() * 3.0;
+                r_min + (r_max - r_min) * (t - t.floor())
+            };
+            sampler
+                .varying(7, r_min, field, levels)
+                .unwrap()
+                .map(|p| p.map(f64::to_bits))
+                .collect()
+        }
+        for (periodic, sphere, levels) in [
+            (false, false, true),
+            (true, false, true),
+            (false, true, true),
+            (false, false, false),
+        ] {
+            let what = format!("periodic {periodic}, sphere {sphere}, levels {levels}");
+            let plane = both_copies(|| run::<2>(periodic, sphere, levels));
+            assert_same(&format!("2-D, {what}"), plane, 500);
+            let cube = both_copies(|| run::<3>(periodic, sphere, levels));
+            assert_same(&format!("3-D, {what}"), cube, 200);
+        }
     }
 
     #[test]
