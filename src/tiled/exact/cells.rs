@@ -41,41 +41,35 @@ impl Exact {
                 usize::MAX
             }
         }));
-        self.cell_start.clear();
-        self.cell_start.resize(cells + 1, 0);
+        // A counting sort: each cell's count at its own index, summed into
+        // its end, then the points placed from the last one back, each
+        // cell's end moving down to its start (so a cell keeps its points
+        // in index order, and `cell_start[cells]` stays the total).
+        let starts = &mut self.cell_start;
+        starts.clear();
+        starts.resize(cells + 1, 0);
         for &c in &cell_of {
-            if let Some(count) = c.checked_add(1).and_then(|k| self.cell_start.get_mut(k)) {
+            if let Some(count) = starts.get_mut(c) {
                 *count += 1;
             }
         }
         let mut sum = 0;
-        for c in &mut self.cell_start {
-            sum += *c;
-            *c = sum;
+        for s in starts.iter_mut() {
+            sum += *s;
+            *s = sum;
         }
         self.cell_items.clear();
         self.cell_items.resize(sum, 0);
-        // `cell_start[c]` walks up to `cell_start[c + 1]` as cell c fills;
-        // shifted back afterwards.
-        for (i, &c) in cell_of.iter().enumerate() {
-            if let Some(at) = self.cell_start.get_mut(c) {
+        for (i, &c) in cell_of.iter().enumerate().rev() {
+            if let Some(end) = starts.get_mut(c) {
+                *end -= 1;
                 #[expect(clippy::cast_possible_truncation, reason = "band points < 2^32")]
-                if let Some(slot) = self.cell_items.get_mut(*at) {
+                if let Some(slot) = self.cell_items.get_mut(*end) {
                     *slot = i as u32;
                 }
-                *at += 1;
             }
         }
         self.cell_of = cell_of;
-        for c in (1..=cells).rev() {
-            let prev = self.cell_start.get(c - 1).copied().unwrap_or(0);
-            if let Some(s) = self.cell_start.get_mut(c) {
-                *s = prev;
-            }
-        }
-        if let Some(s) = self.cell_start.first_mut() {
-            *s = 0;
-        }
     }
 
     /// Calls `visit` with the index of every gathered band point (dead
