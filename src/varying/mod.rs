@@ -497,13 +497,19 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> FusedIterator for Varying<N, F> {}
 mod tests {
     use crate::{Domain, PoissonDisk};
 
-    /// The two indexes find the same conflicts, so they make the same
-    /// points, bit for bit, whatever the box, the field or the candidates.
-    fn same_points<const N: usize>(periodic: bool, sphere: bool, ratio: f64, seed: u64) {
+    /// A sampler of `N`-D points whose radius runs from `r_max / ratio` to
+    /// `r_max` in a wave along the box's diagonal (the radius changes
+    /// direction, so levels meet in places), on levels or on lists.
+    fn wave<const N: usize>(
+        (periodic, sphere): (bool, bool),
+        r_max: f64,
+        ratio: f64,
+        seed: u64,
+        levels: bool,
+    ) -> super::Varying<N, impl Fn(&[f64; N]) -> f64> {
         let domain = Domain::from_extent([1.0; N])
             .unwrap()
             .with_periodic([periodic; N]);
-        let r_max = [0.0, 0.02, 0.06, 0.18, 0.35][N];
         let kind = if sphere {
             crate::Candidates::Sphere
         } else {
@@ -514,18 +520,21 @@ mod tests {
             .build()
             .unwrap();
         let r_min = r_max / ratio;
-        // A wave: the radius changes direction, so levels meet in places.
-        let field = |p: &[f64; N]| {
+        let field = move |p: &[f64; N]| {
             let t = p.iter().sum::<f64>() * 3.0;
             r_min + (r_max - r_min) * (t - t.floor())
         };
-        let on_levels = sampler.varying(seed, r_min, field, true).unwrap();
+        sampler.varying(seed, r_min, field, levels).unwrap()
+    }
+
+    /// The two indexes find the same conflicts, so they make the same
+    /// points, bit for bit, whatever the box, the field or the candidates.
+    fn same_points<const N: usize>(periodic: bool, sphere: bool, ratio: f64, seed: u64) {
+        let r_max = [0.0, 0.02, 0.06, 0.18, 0.35][N];
+        let on_levels = wave::<N>((periodic, sphere), r_max, ratio, seed, true);
         assert!(matches!(on_levels.index, super::Index::Levels(_)), "{N}-D");
         let levels: Vec<_> = on_levels.collect();
-        let lists: Vec<_> = sampler
-            .varying(seed, r_min, field, false)
-            .unwrap()
-            .collect();
+        let lists: Vec<_> = wave::<N>((periodic, sphere), r_max, ratio, seed, false).collect();
         assert!(levels.len() > 20, "{N}-D: {} points", levels.len());
         assert_eq!(levels, lists, "{N}-D periodic {periodic} sphere {sphere}");
     }
@@ -536,28 +545,9 @@ mod tests {
     #[test]
     fn both_copies_make_the_same_points() {
         use crate::cpu::tests::{assert_same, both_copies};
-        fn run<const N: usize>(periodic: bool, sphere: bool, levels: bool) -> Vec<[u64; N]> {
-            let domain = Domain::from_extent([1.0; N])
-                .unwrap()
-                .with_periodic([periodic; N]);
+        fn run<const N: usize>(kind: (bool, bool), levels: bool) -> Vec<[u64; N]> {
             let r_max = [0.0, 0.01, 0.04, 0.12, 0.3][N];
-            let kind = if sphere {
-                crate::Candidates::Sphere
-            } else {
-                crate::Candidates::Annulus
-            };
-            let sampler = PoissonDisk::builder(domain, r_max)
-                .candidates(kind)
-                .build()
-                .unwrap();
-            let r_min = r_max / 3.0;
-            let field = |p: &[f64; N]| {
-                let t = p.iter().sum::<f64>() * 3.0;
-                r_min + (r_max - r_min) * (t - t.floor())
-            };
-            sampler
-                .varying(7, r_min, field, levels)
-                .unwrap()
+            wave::<N>(kind, r_max, 3.0, 7, levels)
                 .map(|p| p.map(f64::to_bits))
                 .collect()
         }
@@ -568,9 +558,9 @@ mod tests {
             (false, false, false),
         ] {
             let what = format!("periodic {periodic}, sphere {sphere}, levels {levels}");
-            let plane = both_copies(|| run::<2>(periodic, sphere, levels));
+            let plane = both_copies(|| run::<2>((periodic, sphere), levels));
             assert_same(&format!("2-D, {what}"), plane, 500);
-            let cube = both_copies(|| run::<3>(periodic, sphere, levels));
+            let cube = both_copies(|| run::<3>((periodic, sphere), levels));
             assert_same(&format!("3-D, {what}"), cube, 200);
         }
     }
