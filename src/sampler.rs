@@ -191,7 +191,7 @@ impl<const N: usize> Builder<N> {
     }
 
     /// Sets the memory budget of a run in bytes (default
-    /// [`DEFAULT_MAX_GRID_BYTES`](crate::DEFAULT_MAX_GRID_BYTES), 1 GiB): the
+    /// [`DEFAULT_MAX_GRID_BYTES`], 1 GiB): the
     /// most heap the grid, its points and the active list may hold at once,
     /// counted before each allocation. A run that would outgrow it stops
     /// ([`Iter::error`]).

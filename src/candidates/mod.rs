@@ -189,7 +189,7 @@ impl<const N: usize> CandidateSampler<N> {
     }
 
     /// The arithmetic of [`Self::volume_radius`], from the draw's
-    /// [`CUBE_ROOTS`] entry and its [`cube_step`].
+    /// [`CUBE_ROOTS`](tables::CUBE_ROOTS) entry and its [`cube_step`].
     #[inline(always)]
     fn volume_radius_from(&self, (root, scale): (f64, f64), step: f64) -> f64 {
         self.radius * cube_root_near(root, step * scale)

@@ -143,7 +143,7 @@ pub struct TiledBuilder {
     width: u32,
     height: u32,
     spacing: Spacing,
-    /// `None`: [`DEFAULT_ATTEMPTS`](crate::DEFAULT_ATTEMPTS), or
+    /// `None`: [`DEFAULT_ATTEMPTS`], or
     /// [`EXACT_ATTEMPTS`] in exact mode.
     attempts: Option<u32>,
     candidates: Candidates,
