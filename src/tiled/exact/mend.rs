@@ -222,13 +222,18 @@ impl Exact {
         near.above.clear();
         near.above
             .extend(self.final_above(window, y, x, width).copied());
+        near.own.clear();
         near.near.clear();
         self.near_pixel(x, width, band_rows, |i| {
             if self.alive.get(i as usize) == Some(&true)
                 && let (Some(&q), Some(&b)) =
                     (self.points.get(i as usize), self.pixel.get(i as usize))
             {
-                near.near.push((q, i, b));
+                if b as usize == x {
+                    near.own.push(q);
+                } else {
+                    near.near.push((q, i, b));
+                }
             }
             true
         });
@@ -280,6 +285,11 @@ impl Exact {
         }
         #[expect(clippy::cast_precision_loss, reason = "row indices < 2^32")]
         if d[1] - (y as f64) < r2.sqrt() && near.above.iter().any(|q| distance_squared(d, q) < r2) {
+            return None;
+        }
+        // A point of the dart's own pixel can never go. Whether a dart is
+        // refused does not depend on the order the points are checked in.
+        if near.own.iter().any(|q| distance_squared(d, q) < r2) {
             return None;
         }
         let mut found = Blockers {

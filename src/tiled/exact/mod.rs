@@ -162,12 +162,15 @@ struct ByCell {
 /// What the darts of one short pixel are checked against
 /// ([`Exact::best_dart`]), copied out once since nothing changes until one
 /// is placed: the darts already placed in the columns around, the final
-/// points above near it, and the live band points of the pixels around
-/// with their index and pixel, in [`Exact::near_pixel`]'s order.
+/// points above near it, the live points of the short pixel itself (a
+/// dart may take none of them: checked first, they turn most darts away
+/// in a few distances), and the other live band points of the pixels
+/// around with their index and pixel, in [`Exact::near_pixel`]'s order.
 #[derive(Debug, Default)]
 struct DartScratch {
     darts: Vec<[f64; 2]>,
     above: Vec<[f64; 2]>,
+    own: Vec<[f64; 2]>,
     near: Vec<([f64; 2], u32, u32)>,
 }
 
