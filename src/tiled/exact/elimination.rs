@@ -140,9 +140,8 @@ impl Exact {
                 // `i` lies in row `y`, so its own terms count in full on
                 // its neighbours' weights (scale 1). Without a branch: a
                 // pair out of reach, or with neither end removable, adds a
-                // term of +0.0, which leaves every
-                // sum's bits as they are (sums of terms >= 0 are never
-                // -0.0).
+                // term of +0.0, which leaves every sum's bits as they are
+                // (sums of terms >= 0 are never -0.0).
                 let mut w = this.weight;
                 for q in others {
                     let d2 = distance_squared(&p, &q.p);

@@ -100,8 +100,11 @@ impl Exact {
         let (fx, fy) = (x as f64, y as f64);
         let mut darts = [[0.0; 2]; DARTS_MORE];
         let mut thrown = 0;
+        // Filled apart from `self`, which it reads, then put back: the
+        // darts below read it there.
         let mut near = core::mem::take(&mut self.dart_scratch);
         self.gather_blockers(window, (x, y), (width, band_rows), &mut near);
+        self.dart_scratch = near;
         // Strict with a few darts, then lenient with them, then lenient
         // with many, then (if allowed) taking from any pixel: most short
         // pixels take the first.
@@ -121,9 +124,8 @@ impl Exact {
                 rng,
             );
             thrown = thrown.max(count);
-            let found = self.best_dart(&near, darts.get(..count).unwrap_or(&[]), (x, y), take);
+            let found = self.best_dart(darts.get(..count).unwrap_or(&[]), (x, y), take);
             if let Some((d, b)) = found {
-                self.dart_scratch = near;
                 self.take_dart(window, d, b, x);
                 return 0;
             }
@@ -135,13 +137,11 @@ impl Exact {
         };
         for _ in 0..RESCUE_ROUNDS {
             throw_darts(&mut darts, (fx, fy), rng);
-            if let Some((d, b)) = self.best_dart(&near, &darts, (x, y), take) {
-                self.dart_scratch = near;
+            if let Some((d, b)) = self.best_dart(&darts, (x, y), take) {
                 self.take_dart(window, d, b, x);
                 return 0;
             }
         }
-        self.dart_scratch = near;
         // A top-up: the dart farthest from every point that stays, looked
         // for as far as the local grid reaches (built for the first top-up
         // of the band: they are rare).
@@ -178,7 +178,6 @@ impl Exact {
     /// (at most [`MAX_BLOCKERS`]), the first such; `None` if none can go.
     fn best_dart(
         &self,
-        near: &DartScratch,
         darts: &[[f64; 2]],
         (x, y): (usize, usize),
         take: Take,
@@ -188,7 +187,7 @@ impl Exact {
             // Only a dart with fewer blockers than the best so far can be
             // taken: the search gives up on the others early.
             let cap = best.map_or(MAX_BLOCKERS, |(_, c)| c.count.saturating_sub(1));
-            if let Some(b) = self.blockers(near, d, (x, y), (take, cap))
+            if let Some(b) = self.blockers(d, (x, y), (take, cap))
                 && best.is_none_or(|(_, c)| b.count < c.count)
             {
                 best = Some((*d, b));
@@ -270,15 +269,15 @@ impl Exact {
     /// The band points closer than `r` to dart `d` in pixel `(x, y)`, if
     /// they may all be removed: each in another pixel, which `take` allows
     /// to lose it, at most `cap` (and [`MAX_BLOCKERS`]); and no final point
-    /// above or dart is that close. `near` holds what these are looked for
-    /// among ([`Self::best_dart`]).
+    /// above or dart is that close. They are looked for among what
+    /// [`Self::gather_blockers`] put in `dart_scratch`.
     fn blockers(
         &self,
-        near: &DartScratch,
         d: &[f64; 2],
         (x, y): (usize, usize),
         (take, cap): (Take, usize),
     ) -> Option<Blockers> {
+        let near = &self.dart_scratch;
         let r2 = self.radius_squared;
         if near.darts.iter().any(|q| distance_squared(d, q) < r2) {
             return None;
@@ -310,8 +309,9 @@ impl Exact {
                 .filter(|&&j| self.pixel.get(j as usize) == Some(&b32))
                 .count();
             let left = self.count.get(b).copied().unwrap_or(0);
-            let may = b != x
-                && found.count < cap.min(MAX_BLOCKERS)
+            // `b != x`: the pixel's own points are in `near.own`, checked
+            // above.
+            let may = found.count < cap.min(MAX_BLOCKERS)
                 && match take {
                     Take::Excess => left >= self.n + taken,
                     Take::Unsettled => left >= self.n + taken || b > x,
