@@ -60,6 +60,8 @@ const DENSITY_SPHERE: f64 = 0.88;
 /// The range of count mode's density factor over `k` in 2-D (its table's
 /// ends, `k = 3` and `k = 1000`, rounded outward).
 const DENSITY_FACTOR: core::ops::RangeInclusive<f64> = 0.80..=1.12;
+/// The radii `build()` accepts, as its docs give them.
+const VALID_RADIUS: core::ops::RangeInclusive<f64> = 1e-150..=1e150;
 
 /// `lo · (hi / lo)^t`, `t` uniform in `[0, 1]` from the next two bytes:
 /// log-uniform.
@@ -315,7 +317,7 @@ impl Inputs {
     /// limit, so the radius may be out of range.
     fn radius_may_be_invalid(&self) -> bool {
         self.radius_range()
-            .is_some_and(|(lo, hi)| lo < 1e-150 || hi > 1e150)
+            .is_some_and(|(lo, hi)| lo < *VALID_RADIUS.start() || hi > *VALID_RADIUS.end())
     }
 
     fn budget(&self) -> u64 {
@@ -356,7 +358,7 @@ impl Inputs {
         }
         if self
             .documented_radius()
-            .is_some_and(|r| !(1e-150..=1e150).contains(&r))
+            .is_some_and(|r| !VALID_RADIUS.contains(&r))
         {
             return Some(Error::InvalidRadius);
         }
@@ -366,7 +368,7 @@ impl Inputs {
         // the radius first).
         if self
             .radius_range()
-            .is_some_and(|(lo, hi)| hi < 1e-150 || lo > 1e150)
+            .is_some_and(|(lo, hi)| hi < *VALID_RADIUS.start() || lo > *VALID_RADIUS.end())
         {
             return Some(Error::InvalidRadius);
         }
@@ -415,7 +417,7 @@ pub(crate) fn run(data: &[u8]) {
         ),
         None => {
             assert!(
-                (1e-150..=1e150).contains(&r),
+                VALID_RADIUS.contains(&r),
                 "{ctx}: exact mode's radius is out of range"
             );
             // per_pixel at k != 30: the density scaled by a factor below 1
