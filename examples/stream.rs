@@ -113,6 +113,10 @@ struct Args {
     /// The streamed runs' attempts k [default: 30; exact mode 10]
     #[arg(long, value_name = "K")]
     attempts: Option<u32>,
+    /// How candidates are drawn, in every program run (the radius follows
+    /// from the density each kind reaches at k)
+    #[arg(long, value_name = "KIND", value_enum, default_value_t = common::CandidatesArg::Annulus)]
+    candidates: common::CandidatesArg,
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
@@ -412,7 +416,9 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// The builder for one streamed configuration of the command line.
 fn builder_for(args: &Args, scheme: Scheme, method: Option<ExactMethod>) -> TiledBuilder {
     let (width, height) = args.size;
-    let builder = Tiled::builder(width, height).scheme(scheme);
+    let builder = Tiled::builder(width, height)
+        .scheme(scheme)
+        .candidates(args.candidates.into());
     let builder = match args.attempts {
         Some(k) => builder.attempts(k),
         None => builder,
@@ -473,6 +479,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let tiled = Tiled::builder(width, height)
             .radius(radius)
             .attempts(attempts)
+            .candidates(args.candidates.into())
             .build()
             .map_err(|e| e.to_string())?;
         let label = "sweep at the same r".to_owned();
@@ -489,6 +496,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let sampler = domain
             .and_then(|d| {
                 PoissonDisk::builder(d, radius)
+                    .candidates(args.candidates.into())
                     .max_grid_bytes(BATCH_BUDGET)
                     .build()
             })
