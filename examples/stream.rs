@@ -114,7 +114,8 @@ struct Args {
     #[arg(long, value_name = "K")]
     attempts: Option<u32>,
     /// How candidates are drawn, in every program run (the radius follows
-    /// from the density each kind reaches at k)
+    /// from the density each kind reaches at k; exact mode's sweep always
+    /// draws on the annulus)
     #[arg(long, value_name = "KIND", value_enum, default_value_t = common::CandidatesArg::Annulus)]
     candidates: common::CandidatesArg,
     /// Print progress every ROWS rows (0 counts as 1)
@@ -440,6 +441,16 @@ fn builder_for(args: &Args, scheme: Scheme, method: Option<ExactMethod>) -> Tile
     }
 }
 
+/// The candidates of the plain sweep and the batch run: the annulus beside
+/// exact mode, whose sweep always draws on it.
+fn candidates(args: &Args) -> bridson::Candidates {
+    if args.exact.is_some() {
+        bridson::Candidates::Annulus
+    } else {
+        args.candidates.into()
+    }
+}
+
 /// The programs the command line asks for, streams first.
 fn programs(args: &Args) -> Result<Vec<Program>, String> {
     let (width, height) = args.size;
@@ -479,7 +490,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let tiled = Tiled::builder(width, height)
             .radius(radius)
             .attempts(attempts)
-            .candidates(args.candidates.into())
+            .candidates(candidates(args))
             .build()
             .map_err(|e| e.to_string())?;
         let label = "sweep at the same r".to_owned();
@@ -496,7 +507,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let sampler = domain
             .and_then(|d| {
                 PoissonDisk::builder(d, radius)
-                    .candidates(args.candidates.into())
+                    .candidates(candidates(args))
                     .max_grid_bytes(BATCH_BUDGET)
                     .build()
             })

@@ -346,6 +346,26 @@ proptest! {
     }
 }
 
+/// Exact mode's sweep draws on the annulus whatever the candidates (the
+/// sphere breaks its calibration: `TiledBuilder::candidates`): the same
+/// radius, `k` and points either way.
+#[test]
+fn exact_mode_always_draws_on_the_annulus() {
+    for method in [ExactMethod::Eliminate, ExactMethod::Random] {
+        for n in [1, 4, 9] {
+            let annulus = Tiled::builder(24, 16).exact(n).exact_method(method);
+            let a = annulus.build().unwrap();
+            let s = annulus.candidates(Candidates::Sphere).build().unwrap();
+            assert_eq!(a.radius(), s.radius(), "{method:?} n={n}: radius");
+            assert_eq!(a.attempts(), s.attempts(), "{method:?} n={n}: k");
+            let points = |t: &Tiled| -> Vec<[f64; 2]> {
+                t.pixels_seeded(5).flat_map(|p| p.points).collect()
+            };
+            assert_eq!(points(&a), points(&s), "{method:?} n={n}: points");
+        }
+    }
+}
+
 #[test]
 fn exact_zero_is_an_error() {
     assert_eq!(
