@@ -14,6 +14,9 @@ mod batch;
 #[path = "../fuzz/common/streaming.rs"]
 mod streaming;
 
+#[path = "../fuzz/common/camera.rs"]
+mod camera;
+
 #[cfg(feature = "serde")]
 #[path = "../fuzz/common/config_json.rs"]
 mod config_json;
@@ -69,6 +72,11 @@ fn streaming_corpus() {
     replay("streaming", streaming::run);
 }
 
+#[test]
+fn camera_corpus() {
+    replay("camera", camera::run);
+}
+
 #[cfg(feature = "serde")]
 #[test]
 fn config_json_corpus() {
@@ -90,5 +98,16 @@ fn streaming_decodes_short_inputs() {
     for len in 0..=3 {
         streaming::run(&vec![0xff; len]);
         streaming::run(&vec![0; len]);
+    }
+}
+
+/// The decoder accepts every input, even an empty one (both halves: the
+/// first byte picks `PoissonPixelSampler` or `CameraPixels`).
+#[test]
+fn camera_decodes_short_inputs() {
+    for len in 0..=3 {
+        camera::run(&vec![0xff; len]);
+        camera::run(&vec![0; len]);
+        camera::run(&vec![1; len]);
     }
 }

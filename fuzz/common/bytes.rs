@@ -1,5 +1,6 @@
 //! The byte reader the fuzz targets decode their inputs with, shared by
-//! `batch.rs` and `streaming.rs` (and so by `tests/fuzz_corpus.rs`). The
+//! `batch.rs`, `streaming.rs` and `camera.rs` (and so by
+//! `tests/fuzz_corpus.rs`), with two helpers the last two share. The
 //! including crate declares it as `mod bytes;`.
 
 /// Reads numbers from the fuzz input, little-endian; zeros past the end.
@@ -40,4 +41,26 @@ impl<'a> Bytes<'a> {
     pub(crate) fn f64_bits(&mut self) -> f64 {
         f64::from_bits(self.u64())
     }
+}
+
+/// `lo · (hi / lo)^t`, `t` uniform in `[0, 1]` from the next two bytes:
+/// log-uniform.
+#[allow(dead_code, reason = "not every target uses it")]
+pub(crate) fn log_uniform(b: &mut Bytes<'_>, lo: f64, hi: f64) -> f64 {
+    let t = f64::from(b.u16()) / 65535.0;
+    lo * (hi / lo).powf(t)
+}
+
+/// `x` moved by `steps` ulps (finite `x` only).
+#[allow(dead_code, reason = "not every target uses it")]
+pub(crate) fn ulps(x: f64, steps: i8) -> f64 {
+    let mut y = x;
+    for _ in 0..steps.unsigned_abs() {
+        y = if steps > 0 {
+            y.next_up()
+        } else {
+            y.next_down()
+        };
+    }
+    y
 }

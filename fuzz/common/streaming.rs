@@ -28,7 +28,7 @@
 //! `n` points in every pixel, and the distance only where no top-up dart
 //! was placed, as `TiledBuilder::exact` documents).
 
-use crate::bytes::Bytes;
+use crate::bytes::{Bytes, log_uniform, ulps};
 use crate::common;
 use bridson::{
     Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_WINDOW_BYTES, EXACT_ATTEMPTS, Error, MAX_ATTEMPTS,
@@ -63,13 +63,6 @@ const DENSITY_FACTOR: core::ops::RangeInclusive<f64> = 0.80..=1.12;
 /// The radii `build()` accepts, as its docs give them.
 const VALID_RADIUS: core::ops::RangeInclusive<f64> = 1e-150..=1e150;
 
-/// `lo · (hi / lo)^t`, `t` uniform in `[0, 1]` from the next two bytes:
-/// log-uniform.
-fn log_uniform(b: &mut Bytes<'_>, lo: f64, hi: f64) -> f64 {
-    let t = f64::from(b.u16()) / 65535.0;
-    lo * (hi / lo).powf(t)
-}
-
 /// Values that sit on or next to a documented limit, for the radius and
 /// the samples per pixel.
 const SPECIAL: [f64; 20] = [
@@ -97,19 +90,6 @@ const SPECIAL: [f64; 20] = [
 
 fn special(b: &mut Bytes<'_>) -> f64 {
     SPECIAL[usize::from(b.u8()) % SPECIAL.len()]
-}
-
-/// `x` moved by `steps` ulps (finite `x` only).
-fn ulps(x: f64, steps: i8) -> f64 {
-    let mut y = x;
-    for _ in 0..steps.unsigned_abs() {
-        y = if steps > 0 {
-            y.next_up()
-        } else {
-            y.next_down()
-        };
-    }
-    y
 }
 
 /// A raster side.
