@@ -206,6 +206,11 @@ fn per_pixel_sets_the_radius_by_the_measured_density() {
         (sphere.radius() - (0.88f64 / 4.0).sqrt()).abs() < 1e-15,
         "sphere"
     );
+    assert_eq!(
+        sphere.candidates(),
+        Candidates::Sphere,
+        "natural counts keep it"
+    );
 }
 
 #[test]
@@ -358,6 +363,11 @@ fn exact_mode_always_draws_on_the_annulus() {
             let s = annulus.candidates(Candidates::Sphere).build().unwrap();
             assert_eq!(a.radius(), s.radius(), "{method:?} n={n}: radius");
             assert_eq!(a.attempts(), s.attempts(), "{method:?} n={n}: k");
+            assert_eq!(
+                s.candidates(),
+                Candidates::Annulus,
+                "{method:?} n={n}: kind"
+            );
             let points = |t: &Tiled| -> Vec<[f64; 2]> {
                 t.pixels_seeded(5).flat_map(|p| p.points).collect()
             };

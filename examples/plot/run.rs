@@ -218,7 +218,10 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
     if let Some(target) = &config.report {
         let start = Instant::now();
         let attempts = tiled.as_ref().map_or(sampler.attempts(), Tiled::attempts);
-        let json = quality_report(config, domain, (radius, attempts), &first);
+        let candidates = tiled
+            .as_ref()
+            .map_or(sampler.candidates(), Tiled::candidates);
+        let json = quality_report(config, domain, (radius, attempts, candidates), &first);
         write_report(target, &json)?;
         report(&format!(
             "plot: report in {:.2} s",
@@ -358,13 +361,13 @@ struct RasterReport {
 }
 
 /// The JSON quality report of `points`, a set of `domain` with minimum
-/// distance `radius` drawn with `attempts` as `config` says (see the README
-/// for the fields). Takes the plain list, so a streamed set is measured
-/// alike.
+/// distance `radius` drawn with `attempts` and `candidates` as `config`
+/// says (see the README for the fields). Takes the plain list, so a
+/// streamed set is measured alike.
 fn quality_report<const N: usize>(
     config: &Config,
     domain: Domain<N>,
-    (radius, attempts): (f64, u32),
+    (radius, attempts, candidates): (f64, u32, bridson::Candidates),
     points: &[[f64; N]],
 ) -> String {
     let pairs = quality::pair_stats(points, domain, radius);
@@ -385,7 +388,7 @@ fn quality_report<const N: usize>(
     });
     let rho = bridson::relative_radius::<N>(radius, points.len(), domain.volume());
     let mut j = String::new();
-    let candidates = format!("{:?}", config.candidates).to_lowercase();
+    let candidates = format!("{candidates:?}").to_lowercase();
     let _ = writeln!(j, "{{");
     let _ = writeln!(j, "  \"dim\": {N},");
     let _ = writeln!(j, "  \"radius\": {},", number(radius));
@@ -504,6 +507,20 @@ mod tests {
             "exact mode's calibrated k"
         );
         assert_eq!(k("--pixels 16x8 --exact 4 --attempts 30 --report -"), 30);
+        // The report gives the candidates the set was drawn with: exact
+        // mode's sweep draws on the annulus whatever was asked.
+        let kind = |line: &str| {
+            let c = config(line);
+            streamer(&c, 0.3).unwrap().expect("a stream").candidates()
+        };
+        assert_eq!(
+            kind("--pixels 16x8 --exact 4 --candidates sphere --report -"),
+            bridson::Candidates::Annulus
+        );
+        assert_eq!(
+            kind("--pixels 16x8 --stream sweep --candidates sphere --report -"),
+            bridson::Candidates::Sphere
+        );
         assert_eq!(
             build::<2>(&config("--radius 0.1 --report -"))
                 .unwrap()
@@ -552,7 +569,7 @@ mod tests {
         let text = quality_report(
             &c,
             *sampler.domain(),
-            (sampler.radius(), sampler.attempts()),
+            (sampler.radius(), sampler.attempts(), sampler.candidates()),
             &points,
         );
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
@@ -585,7 +602,8 @@ mod tests {
         }
         let plain = config("--radius 0.3 --probes 0 --report -");
         let s = build::<2>(&plain).expect("sampler");
-        let text = quality_report(&plain, *s.domain(), (s.radius(), s.attempts()), &[]);
+        let settings = (s.radius(), s.attempts(), s.candidates());
+        let text = quality_report(&plain, *s.domain(), settings, &[]);
         let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         assert!(v["min_distance"].is_null(), "no pair: null");
         assert!(v["rho"].is_null(), "no points: null");

@@ -429,6 +429,13 @@ impl Tiled {
         self.attempts
     }
 
+    /// The candidates the sweep draws: the ones set, except in exact mode,
+    /// whose sweep always draws on the annulus (see
+    /// [`TiledBuilder::candidates`]).
+    pub fn candidates(&self) -> Candidates {
+        self.settings.sweep_candidates()
+    }
+
     /// Raster width in pixels.
     pub fn width(&self) -> u32 {
         self.settings.width
