@@ -253,16 +253,16 @@ impl TiledBuilder {
     /// Candidate distribution (default [`Candidates::Annulus`]). Ignored in
     /// exact mode, whose sweep always draws on the annulus: its `k`, its
     /// oversampling and its edge correction were measured and calibrated
-    /// there, and on the sphere they fail. There, before 2026-11-28, the
-    /// sphere gave about 200 top-ups per 10⁶ points (the distance broken
-    /// around each) and pixel-frequency power up to 207 at `n = 4`. At
-    /// settings of its own (`k = 3`, oversampling 1.3) the top-ups go and ρ
-    /// rises to 0.696 (0.657 on the annulus), but elimination locks onto
-    /// the pixel grid (at `n = 16` its in-pixel density jumps between two
-    /// patterns as the correction moves by 0.01, so no correction cancels
-    /// it), and random dropping's render error in the tracer study rose by
-    /// up to 6.5 % over its own on the annulus (README, "Exact mode on the
-    /// sphere").
+    /// there, and they fail on the sphere. Before 2026-11-28 exact mode did
+    /// draw on the sphere when asked, and gave about 200 top-ups per 10⁶
+    /// points (the distance broken around each) and pixel-frequency power
+    /// up to 207 at `n = 4`. With settings of the sphere's own (`k = 3`,
+    /// oversampling 1.3) the top-ups go and ρ rises to 0.696 (0.657 on the
+    /// annulus), but elimination locks onto the pixel grid (at `n = 16`
+    /// its in-pixel density jumps between two patterns as the correction
+    /// moves by 0.01, so no correction cancels it), and random dropping's
+    /// render error in the tracer study rose by up to 6.5 % over its own on
+    /// the annulus (README, "Exact mode on the sphere").
     #[must_use]
     pub fn candidates(mut self, candidates: Candidates) -> Self {
         self.candidates = candidates;
