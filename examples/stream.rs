@@ -441,16 +441,6 @@ fn builder_for(args: &Args, scheme: Scheme, method: Option<ExactMethod>) -> Tile
     }
 }
 
-/// The candidates of the plain sweep and the batch run: the annulus beside
-/// exact mode, whose sweep always draws on it.
-fn candidates(args: &Args) -> bridson::Candidates {
-    if args.exact.is_some() {
-        bridson::Candidates::Annulus
-    } else {
-        args.candidates.into()
-    }
-}
-
 /// The programs the command line asks for, streams first.
 fn programs(args: &Args) -> Result<Vec<Program>, String> {
     let (width, height) = args.size;
@@ -480,8 +470,12 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
             });
         }
     }
-    let (radius, attempts) = match list.first() {
-        Some(Program::Stream { tiled, .. }) => (tiled.radius(), tiled.attempts()),
+    // The radius, k and candidates the first stream runs with (exact mode
+    // draws on the annulus whatever was asked): the other programs use them.
+    let (radius, attempts, candidates) = match list.first() {
+        Some(Program::Stream { tiled, .. }) => {
+            (tiled.radius(), tiled.attempts(), tiled.candidates())
+        }
         _ => return Ok(list),
     };
     // Exact mode against the plain sweep that makes its points (same r,
@@ -490,7 +484,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let tiled = Tiled::builder(width, height)
             .radius(radius)
             .attempts(attempts)
-            .candidates(candidates(args))
+            .candidates(candidates)
             .build()
             .map_err(|e| e.to_string())?;
         let label = "sweep at the same r".to_owned();
@@ -507,7 +501,7 @@ fn programs(args: &Args) -> Result<Vec<Program>, String> {
         let sampler = domain
             .and_then(|d| {
                 PoissonDisk::builder(d, radius)
-                    .candidates(candidates(args))
+                    .candidates(candidates)
                     .max_grid_bytes(BATCH_BUDGET)
                     .build()
             })
