@@ -3,71 +3,12 @@
 //! driven to its end, and that peak never exceeds `max_grid_bytes`, in any
 //! dimension, layout or budget; a radius far larger than the box takes a few
 //! kilobytes, not gigabytes.
-//!
-//! The counters are per thread: tests run on parallel threads, and the
-//! test harness allocates on its own.
+//! The allocator and its per-thread counters are `tests/common/counting.rs`.
 
 use bridson::{Domain, Error, GridLayout, PoissonDisk};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 
-/// The system allocator, counting the bytes held now and their peak.
-struct Counting;
-
-thread_local! {
-    /// Bytes this thread holds now (wrapping: a block freed by another
-    /// thread than its own would be counted there; no test does that).
-    static NOW: Cell<usize> = const { Cell::new(0) };
-    /// The most `NOW` has been since the last reset.
-    static PEAK: Cell<usize> = const { Cell::new(0) };
-}
-
-fn add(bytes: usize) {
-    let now = NOW.get().wrapping_add(bytes);
-    NOW.set(now);
-    PEAK.set(PEAK.get().max(now));
-}
-
-fn sub(bytes: usize) {
-    NOW.set(NOW.get().wrapping_sub(bytes));
-}
-
-// SAFETY: every call forwards to `System` with the caller's arguments
-// unchanged; the counters only observe sizes.
-#[expect(
-    unsafe_code,
-    reason = "a global allocator is an unsafe trait; test only"
-)]
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        add(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        add(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        sub(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // Counted as the worst case: the new block while the old is held.
-        add(new_size);
-        sub(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
+#[path = "common/counting.rs"]
+mod counting;
 
 /// Builds the sampler, runs it to its end (at most `limit` points) and
 /// returns the points made, why the run stopped early, and the peak heap
@@ -79,8 +20,7 @@ fn run<const N: usize>(
     budget: u64,
     limit: usize,
 ) -> Result<(usize, Option<Error>, u64), Error> {
-    let before = NOW.get();
-    PEAK.set(before);
+    let before = counting::start();
     let sampler = PoissonDisk::builder(domain, r)
         .layout(layout)
         .max_grid_bytes(budget)
@@ -89,7 +29,7 @@ fn run<const N: usize>(
     let n = it.by_ref().take(limit).count();
     let error = it.error();
     drop(it);
-    let peak = PEAK.get().wrapping_sub(before);
+    let peak = counting::peak_since(before);
     Ok((n, error, peak as u64))
 }
 

@@ -5,78 +5,18 @@
 //! scheme and in exact mode; and it stays near the multiple of
 //! `window_bytes()` that `TiledBuilder::max_window_bytes` documents for the
 //! stream's working memory on top of the window.
-//!
-//! The counters are per thread: tests run on parallel threads, and the
-//! test harness allocates on its own.
+//! The allocator and its per-thread counters are `tests/common/counting.rs`.
 
 use bridson::{ExactMethod, Scheme, Tiled, TiledBuilder};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 
-/// The system allocator, counting the bytes held now and their peak.
-struct Counting;
-
-thread_local! {
-    /// Bytes this thread holds now (wrapping: a block freed by another
-    /// thread than its own would be counted there; no test does that).
-    static NOW: Cell<usize> = const { Cell::new(0) };
-    /// The most `NOW` has been since the last reset.
-    static PEAK: Cell<usize> = const { Cell::new(0) };
-}
-
-fn add(bytes: usize) {
-    let now = NOW.get().wrapping_add(bytes);
-    NOW.set(now);
-    PEAK.set(PEAK.get().max(now));
-}
-
-fn sub(bytes: usize) {
-    NOW.set(NOW.get().wrapping_sub(bytes));
-}
-
-// SAFETY: every call forwards to `System` with the caller's arguments
-// unchanged; the counters only observe sizes.
-#[expect(
-    unsafe_code,
-    reason = "a global allocator is an unsafe trait; test only"
-)]
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        add(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        add(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        sub(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // Counted as the worst case: the new block while the old is held.
-        add(new_size);
-        sub(layout.size());
-        // SAFETY: forwarded unchanged.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
+#[path = "common/counting.rs"]
+mod counting;
 
 /// Builds the stream `builder` makes for `height` rows, drives it to its
 /// end and returns its window's bytes and the peak heap the stream took
 /// above what was held before it.
 fn peak(builder: impl Fn(u32) -> TiledBuilder, height: u32) -> (u64, usize) {
-    let before = NOW.get();
-    PEAK.set(before);
+    let before = counting::start();
     let tiled = builder(height).build().expect("a valid stream");
     let mut pixels = tiled.pixels_seeded(3);
     let mut points = Vec::new();
@@ -86,7 +26,7 @@ fn peak(builder: impl Fn(u32) -> TiledBuilder, height: u32) -> (u64, usize) {
     }
     assert!(count > 0, "the stream made no point");
     drop(pixels);
-    (tiled.window_bytes(), PEAK.get() - before)
+    (tiled.window_bytes(), counting::peak_since(before))
 }
 
 #[test]
