@@ -171,8 +171,9 @@ impl TiledBuilder {
     /// made by removing points of neighbouring pixels that have more than
     /// `n`. So the minimum distance is the sweep's radius,
     /// [`Tiled::radius`], except around top-ups: darts placed closer
-    /// because no room could be made, which [`Pixels::top_ups`] counts (none
-    /// at the default oversampling in our runs; some at `1.0`).
+    /// because no room could be made, which [`Pixels::top_ups`] counts (rare
+    /// at the default oversampling: one in 1.07·10⁹ points in one run, one
+    /// in 4.2·10⁶ in another; some at `1.0`).
     ///
     /// Exact mode always uses [`Scheme::Sweep`]: it thins whole rows
     /// jointly (see the `exact` module docs in the source). Its sweep always
