@@ -3,6 +3,7 @@
 //! driven to its end, and that peak never exceeds `max_grid_bytes`, in any
 //! dimension, layout or budget; a radius far larger than the box takes a few
 //! kilobytes, not gigabytes.
+//!
 //! The allocator and its per-thread counters are `tests/common/counting.rs`.
 
 use bridson::{Domain, Error, GridLayout, PoissonDisk};
