@@ -16,8 +16,9 @@ use super::{Exact, ExactMethod};
 /// goal). Linear in `ε`: at `ε = −0.05` the term was +0.0059 to +0.0061
 /// (elimination) and +0.0029 to +0.0030 (random dropping), seeds 1 and
 /// 2, so `ε = −0.012` and `−0.019` zero it; at `n = 8` (724²) the term
-/// was 0.0000 and +0.0001 already, so `ε` falls to 0 there. Afterwards,
-/// 1024², seeds 1 to 4: the `sin` term within ±0.0006, power in `x` at
+/// was 0.0000 and +0.0001 already, so `ε` fell to 0 there (at 1.34·10⁸
+/// points a tilt of −0.0002 to −0.0003 showed there too; see below).
+/// Afterwards, 1024², seeds 1 to 4: the `sin` term within ±0.0006, power in `x` at
 /// most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
 /// at `n = 16` were set again from 512² (4 M points; they had left power
 /// 17.7–22.6 in `y` at 1024²), and its `βx` and `βy` at `n = 8` from 1024²
@@ -48,9 +49,21 @@ use super::{Exact, ExactMethod};
 /// of +0.03 in `βx` (the `x` `cos` term +0.0029 and +0.0018) and the
 /// earlier `βy` slope, elimination's `βx` 0.072 → 0.0677 and `βy` 0.077 →
 /// 0.0809, random dropping's `βx` 0.048 → 0.0567 (seed 1 then: 0.51 / 0.65
-/// and 0.71 / 1.32, edge bands 0.981–1.006). `n = 8` was not measured at
-/// that scale; `n = 64` was (1448², seed 2: power 20.0 / 13.3 for
-/// elimination, 7.0 / 6.1 for random dropping) and is not solved yet.
+/// and 0.71 / 1.32, edge bands 0.981–1.006). In the next session `n = 64`
+/// (1448², the same count) followed: its old terms read 20.0 / 13.3
+/// (elimination) and 7.0 / 6.1 (random dropping), seed 2; from a step of
+/// +0.03 in each of `βx`, `βy` and `γ`, elimination's terms went from
+/// `[0.007, 0.034, 0.017]` to `[0.0152, 0.0384, 0.013]` and random
+/// dropping's from zero to `[0.0077, 0.0072, 0]` (seeds 1 and 3 then: power
+/// at most 0.73, edge bands 0.973–1.023). And `n = 8` (4096², the same
+/// count; old terms 31.1 / 19.5 and 2.4 / 16.9, seed 2), from steps in
+/// `βx` and `βy` (elimination) and `βy` and `γ` (random dropping), the
+/// other terms from the slopes measured at `n` = 4, 16 and 64. With the
+/// new row for 64, `n = 32` (2048², seed 1), which lies between rows,
+/// read 92.7 / 20.4 (elimination) and 45.4 / 41.3 (random dropping): the
+/// terms fall faster than linearly from 16 to 64, so `n = 32` has a row of
+/// its own, solved from that run and the slopes at 16 and 64. Every run is
+/// in `docs/streaming-runs.md`.
 ///
 /// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
@@ -66,27 +79,30 @@ use super::{Exact, ExactMethod};
 /// pixels for `n` = 4, 8, 16, 64, `δ` 0.2, 0.1, 0, 0; seeds 1 and 2
 /// averaged; the harmonic is linear in
 /// each): β from two settings, then γ from two (the script and its runs
-/// are in the journal, "Exact mode at k = 10"). Linear in `n` between
-/// those, the `n = 4` values below (at `n = 1` no β helps: a quarter of
-/// the pixels are short there), the `n = 64` values above. `y` differs
+/// are in the journal, "Exact mode at k = 10"; the row for `n = 32` came
+/// later, at 10⁸ points). Linear in `n` between the rows, the `n = 4`
+/// values below (at `n = 1` no β helps: a quarter of the pixels are short
+/// there), the `n = 64` values above. `y` differs
 /// from `x` because rows are settled in order and columns together: darts
 /// take room from the row below, and elimination sees the rows above
 /// settled and the row below oversampled. Other oversamplings and `k`
 /// keep these values, which then fit less well
 /// (`docs/images/exact-tradeoff.png`).
 fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
-    let table: [(f64, [f64; 5]); 4] = match method {
+    let table: [(f64, [f64; 5]); 5] = match method {
         ExactMethod::Eliminate => [
             (4.0, [0.193, 0.0782, -0.0417, 0.2, -0.012]),
-            (8.0, [0.113, 0.066, 0.009, 0.1, 0.0]),
+            (8.0, [0.1223, 0.0736, 0.0072, 0.1, -0.0017]),
             (16.0, [0.0677, 0.0809, 0.022, 0.0, 0.0]),
-            (64.0, [0.007, 0.034, 0.017, 0.0, 0.0]),
+            (32.0, [0.0327, 0.060, 0.0231, 0.0, 0.0]),
+            (64.0, [0.0152, 0.0384, 0.013, 0.0, 0.0]),
         ],
         ExactMethod::Random => [
             (4.0, [0.314, 0.1425, -0.069, 0.2, -0.019]),
-            (8.0, [0.130, 0.070, -0.008, 0.1, 0.0]),
+            (8.0, [0.1339, 0.0665, -0.0156, 0.1, -0.0021]),
             (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
-            (64.0, [0.0, 0.0, 0.0, 0.0, 0.0]),
+            (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
+            (64.0, [0.0077, 0.0072, 0.0, 0.0, 0.0]),
         ],
     };
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
