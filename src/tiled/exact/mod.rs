@@ -22,10 +22,14 @@
 //!    pixel border, one out near it on one side and one in near it on the
 //!    other: the density along the borders is kept. The dart goes into the
 //!    sweep's grid, so that points the sweep still makes below keep their
-//!    distance from it too. Only if all that fails (not seen at the
-//!    default oversampling: `examples/stream.rs` reports it) the best of
-//!    the darts by distance is taken: a *top-up*, which may come closer
-//!    than `r`; [`Pixels::top_ups`] counts them.
+//!    distance from it too. If all that fails, the pixel is hemmed in by
+//!    points that never go: on any pass but the last, every point of the
+//!    pixel is taken out (once a row) and darts place all `n` again, the
+//!    pixels they rob mended on the next pass. Only if that fails too
+//!    (about once in 10⁹ points at the default oversampling before the
+//!    re-placing; `examples/stream.rs` reports it) the best of the darts by
+//!    distance is taken: a *top-up*, which may come closer than `r`;
+//!    [`Pixels::top_ups`] counts them.
 //! 3. **Excess.** Pixels of row `y` with more than `n` points lose the
 //!    excess, by the [`ExactMethod`]:
 //!    - [`ExactMethod::Eliminate`]: weighted sample elimination (Yuksel
@@ -242,6 +246,9 @@ pub(crate) struct Exact {
     /// against a few darts, not against every dart of a row as wide as the
     /// image.
     dart_columns: Vec<Vec<u32>>,
+    /// Columns of the row being mended whose points were all taken out to
+    /// be placed again by darts, before a top-up (at most once a row each).
+    cleared: Vec<usize>,
     /// The darts kept in the row settled last, by pixel column: the only
     /// final points a band point can be closer than `r` to (step 1; every
     /// other final point is a sweep point, as the band's points are, and
@@ -322,6 +329,7 @@ impl Exact {
             sorted: Vec::new(),
             darts: Vec::new(),
             dart_columns: Vec::new(),
+            cleared: Vec::new(),
             darts_above: Vec::new(),
             strip: Vec::new(),
             strip_row: None,
