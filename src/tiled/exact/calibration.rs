@@ -62,8 +62,15 @@ use super::{Exact, ExactMethod};
 /// new row for 64, `n = 32` (2048², seed 1), which lies between rows,
 /// read 92.7 / 20.4 (elimination) and 45.4 / 41.3 (random dropping): the
 /// terms fall faster than linearly from 16 to 64, so `n = 32` has a row of
-/// its own, solved from that run and the slopes at 16 and 64. Every run is
-/// in `docs/streaming-runs.md`.
+/// its own, solved from that run and the slopes at 16 and 64; so do
+/// `n = 24` (2365², seed 1: 5.25 / 4.54 and 8.09 / 4.71 between the rows
+/// for 16 and 32) and elimination's `n = 48` (1672²: 3.13 / 2.95; random
+/// dropping's 1.40 / 0.75, so its row for 48 is the interpolation). On
+/// seed 2 the new rows read at most 0.78. `βx` at `n = 4` (elimination)
+/// fell from 0.193 to 0.1918: at 1.07·10⁹ points, after the `βy` and `γ`
+/// above, it read 4.84 in `x` (a `cos` term of +0.00013, taken at the
+/// slope `n = 8` gave, 0.11), which no run of 10⁸ points resolves (0.17
+/// to 0.31). Every run is in `docs/streaming-runs.md`.
 ///
 /// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
@@ -89,19 +96,24 @@ use super::{Exact, ExactMethod};
 /// keep these values, which then fit less well
 /// (`docs/images/exact-tradeoff.png`).
 fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
-    let table: [(f64, [f64; 5]); 5] = match method {
+    let table: [(f64, [f64; 5]); 7] = match method {
         ExactMethod::Eliminate => [
-            (4.0, [0.193, 0.0782, -0.0417, 0.2, -0.012]),
+            (4.0, [0.1918, 0.0782, -0.0417, 0.2, -0.012]),
             (8.0, [0.1223, 0.0736, 0.0072, 0.1, -0.0017]),
             (16.0, [0.0677, 0.0809, 0.022, 0.0, 0.0]),
+            (24.0, [0.046, 0.0694, 0.0258, 0.0, 0.0]),
             (32.0, [0.0327, 0.060, 0.0231, 0.0, 0.0]),
+            (48.0, [0.0207, 0.047, 0.0164, 0.0, 0.0]),
             (64.0, [0.0152, 0.0384, 0.013, 0.0, 0.0]),
         ],
         ExactMethod::Random => [
             (4.0, [0.314, 0.1425, -0.069, 0.2, -0.019]),
             (8.0, [0.1339, 0.0665, -0.0156, 0.1, -0.0021]),
             (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
+            (24.0, [0.0306, 0.0295, -0.00165, 0.0, 0.0]),
             (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
+            // Halfway between 32 and 64: it read 1.40 / 0.75 so.
+            (48.0, [0.0143, 0.01325, -0.00065, 0.0, 0.0]),
             (64.0, [0.0077, 0.0072, 0.0, 0.0, 0.0]),
         ],
     };
