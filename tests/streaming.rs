@@ -46,6 +46,29 @@ fn check_stream(tiled: &Tiled, seed: u64) -> Result<usize, String> {
     Ok(union.len())
 }
 
+/// Streams an exact-mode `tiled` with `seed`: the union of its pixels'
+/// points and the stream's top-ups, or `Err` naming the first pixel that
+/// does not hold exactly `n` points, all inside it.
+fn exact_union(tiled: &Tiled, seed: u64, n: usize) -> Result<(Vec<[f64; 2]>, u64), String> {
+    let mut it = tiled.pixels_seeded(seed);
+    let mut union = Vec::new();
+    let mut buf = Vec::new();
+    while let Some((x, y)) = it.next_into(&mut buf) {
+        if buf.len() != n {
+            return Err(format!("pixel {x},{y}: {} points, not {n}", buf.len()));
+        }
+        let lo = [f64::from(x), f64::from(y)];
+        let outside = common::out_of_bounds(&buf, lo, [lo[0] + 1.0, lo[1] + 1.0]);
+        if !outside.is_empty() {
+            return Err(format!(
+                "pixel {x},{y} holds points outside it: {outside:?}"
+            ));
+        }
+        union.extend_from_slice(&buf);
+    }
+    Ok((union, it.top_ups()))
+}
+
 fn scheme() -> impl Strategy<Value = Scheme> {
     prop_oneof![Just(Scheme::Sweep), Just(Scheme::Paper)]
 }
@@ -332,18 +355,11 @@ proptest! {
             .exact_oversample(oversample)
             .build()
             .unwrap();
-        let mut it = tiled.pixels_seeded(seed);
-        let mut union = Vec::new();
-        let mut buf = Vec::new();
-        while let Some((x, y)) = it.next_into(&mut buf) {
-            prop_assert_eq!(buf.len(), n as usize, "pixel {:?}, seed {}", (x, y), seed);
-            let lo = [f64::from(x), f64::from(y)];
-            let outside = common::out_of_bounds(&buf, lo, [lo[0] + 1.0, lo[1] + 1.0]);
-            prop_assert!(outside.is_empty(), "seed {seed}: {outside:?}");
-            union.extend_from_slice(&buf);
-        }
+        let streamed = exact_union(&tiled, seed, n as usize);
+        prop_assert!(streamed.is_ok(), "seed {seed}: {:?}", streamed.err());
+        let (union, top_ups) = streamed.unwrap_or_default();
         prop_assert_eq!(union.len(), (w * h * n) as usize, "total, seed {}", seed);
-        if it.top_ups() == 0 {
+        if top_ups == 0 {
             let raster = [f64::from(w), f64::from(h)];
             let result = common::check_points(&union, tiled.radius(), [0.0; 2], raster, [false; 2]);
             prop_assert!(result.is_ok(), "seed {seed}: {}", result.err().unwrap_or_default());
@@ -428,18 +444,9 @@ fn exact_mode_keeps_the_radius_where_the_sweep_left_pixels_short() {
                 .exact_oversample(s)
                 .build()
                 .unwrap();
-            let mut it = tiled.pixels_seeded(3);
-            let mut union = Vec::new();
-            let mut buf = Vec::new();
-            while let Some((x, y)) = it.next_into(&mut buf) {
-                assert_eq!(
-                    buf.len(),
-                    n as usize,
-                    "{method:?} n={n} s={s} pixel {x},{y}"
-                );
-                union.extend_from_slice(&buf);
-            }
-            assert_eq!(it.top_ups(), 0, "{method:?} n={n} s={s}: top-ups");
+            let (union, top_ups) = exact_union(&tiled, 3, n as usize)
+                .unwrap_or_else(|e| panic!("{method:?} n={n} s={s}: {e}"));
+            assert_eq!(top_ups, 0, "{method:?} n={n} s={s}: top-ups");
             let raster = [40.0, 30.0];
             let result = common::check_points(&union, tiled.radius(), [0.0; 2], raster, [false; 2]);
             assert!(result.is_ok(), "{method:?} n={n} s={s}: {result:?}");
@@ -470,14 +477,9 @@ fn exact_mode_places_a_hemmed_pixel_again_rather_than_top_it_up() {
             .exact_oversample(1.0)
             .build()
             .unwrap();
-        let mut it = tiled.pixels_seeded(seed);
-        let mut union = Vec::new();
-        let mut buf = Vec::new();
-        while let Some((x, y)) = it.next_into(&mut buf) {
-            assert_eq!(buf.len(), 4, "{method:?} seed {seed} pixel {x},{y}");
-            union.extend_from_slice(&buf);
-        }
-        assert_eq!(it.top_ups(), 0, "{method:?} seed {seed}: top-ups");
+        let (union, top_ups) =
+            exact_union(&tiled, seed, 4).unwrap_or_else(|e| panic!("{method:?} seed {seed}: {e}"));
+        assert_eq!(top_ups, 0, "{method:?} seed {seed}: top-ups");
         let result = common::check_points(&union, tiled.radius(), [0.0; 2], [64.0; 2], [false; 2]);
         assert!(result.is_ok(), "{method:?} seed {seed}: {result:?}");
     }
