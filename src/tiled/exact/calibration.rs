@@ -70,7 +70,8 @@ use super::{Exact, ExactMethod};
 /// fell from 0.193 to 0.1918: at 1.07·10⁹ points, after the `βy` and `γ`
 /// above, it read 4.84 in `x` (a `cos` term of +0.00013, taken at the
 /// slope `n = 8` gave, 0.11), which no run of 10⁸ points resolves (0.17
-/// to 0.31). Every run is in `docs/streaming-runs.md`.
+/// to 0.31); a third billion-point run, on the new terms, then read
+/// 0.32 / 1.75. Every run is in `docs/streaming-runs.md`.
 ///
 /// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
