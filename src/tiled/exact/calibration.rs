@@ -18,8 +18,8 @@ use super::{Exact, ExactMethod};
 /// 2, so `ε = −0.012` and `−0.019` zero it; at `n = 8` (724²) the term
 /// was 0.0000 and +0.0001 already, so `ε` fell to 0 there (at 1.34·10⁸
 /// points a tilt of −0.0002 to −0.0003 showed there too; see below).
-/// Afterwards, 1024², seeds 1 to 4: the `sin` term within ±0.0006, power in `x` at
-/// most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
+/// Afterwards, 1024², seeds 1 to 4: the `sin` term within ±0.0006, power
+/// in `x` at most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
 /// at `n = 16` were set again from 512² (4 M points; they had left power
 /// 17.7–22.6 in `y` at 1024²), and its `βx` and `βy` at `n = 8` from 1024²
 /// (power 2.97–4.45 in `x` there), the same way. In the ninth session
@@ -87,8 +87,8 @@ use super::{Exact, ExactMethod};
 /// pixels for `n` = 4, 8, 16, 64, `δ` 0.2, 0.1, 0, 0; seeds 1 and 2
 /// averaged; the harmonic is linear in
 /// each): β from two settings, then γ from two (the script and its runs
-/// are in the journal, "Exact mode at k = 10"; the row for `n = 32` came
-/// later, at 10⁸ points). Linear in `n` between the rows, the `n = 4`
+/// are in the journal, "Exact mode at k = 10"; the rows for `n` = 24, 32
+/// and 48 came later, at 10⁸ points). Linear in `n` between the rows, the `n = 4`
 /// values below (at `n = 1` no β helps: a quarter of the pixels are short
 /// there), the `n = 64` values above. `y` differs
 /// from `x` because rows are settled in order and columns together: darts
@@ -113,7 +113,7 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
             (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
             (24.0, [0.0306, 0.0295, -0.00165, 0.0, 0.0]),
             (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
-            // Halfway between 32 and 64: it read 1.40 / 0.75 so.
+            // The interpolation between 32 and 64, which read 1.40 / 0.75.
             (48.0, [0.0143, 0.01325, -0.00065, 0.0, 0.0]),
             (64.0, [0.0077, 0.0072, 0.0, 0.0, 0.0]),
         ],

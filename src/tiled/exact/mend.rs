@@ -263,11 +263,11 @@ impl Exact {
         for i in a..z {
             self.kill(i);
         }
+        // Column `x`'s darts are pixel `x`'s (`push_dart`); taken out of
+        // `self` while `kill` borrows it, then put back.
         let darts = core::mem::take(&mut self.dart_columns);
         for &i in darts.get(x).map_or(&[][..], Vec::as_slice) {
-            if self.pixel.get(i as usize).is_some_and(|&b| b as usize == x) {
-                self.kill(i as usize);
-            }
+            self.kill(i as usize);
         }
         self.dart_columns = darts;
     }
