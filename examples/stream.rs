@@ -200,25 +200,42 @@ impl Stats {
     }
 
     /// Tracks the minimum distance against this pixel, its left neighbour
-    /// and the three pixels above.
+    /// and the three pixels above. Each pixel's points are kept sorted by
+    /// `x`, so a point is compared only with those whose `x` lies within
+    /// the smallest distance found so far: exact, and about `√n` times
+    /// fewer comparisons than every pair at `n` points a pixel (the
+    /// calibration runs at `n` = 128 to 1024 would spend most of their time
+    /// here otherwise).
     fn track_distance(&mut self, x: u32, points: &[[f64; 2]]) {
         let x = x as usize;
         let d2 = |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
-        for (i, p) in points.iter().enumerate() {
-            for q in &points[..i] {
+        let mut sorted = core::mem::take(&mut self.current_row[x]);
+        sorted.clear();
+        sorted.extend_from_slice(points);
+        sorted.sort_unstable_by(|a, b| a[0].total_cmp(&b[0]));
+        for (i, p) in sorted.iter().enumerate() {
+            // This pixel's points left of `p`, nearest in `x` first.
+            for q in sorted[..i].iter().rev() {
+                if (p[0] - q[0]).powi(2) >= self.min_d2 {
+                    break;
+                }
                 self.min_d2 = self.min_d2.min(d2(p, q));
             }
             let left = x.checked_sub(1).map(|l| &self.current_row[l]);
             let above = (x.saturating_sub(1)..=(x + 1).min(self.previous_row.len() - 1))
                 .map(|k| &self.previous_row[k]);
             for cell in left.into_iter().chain(above) {
-                for q in cell {
+                let reach = self.min_d2.sqrt();
+                let start = cell.partition_point(|q| q[0] <= p[0] - reach);
+                for q in &cell[start..] {
+                    if q[0] >= p[0] + self.min_d2.sqrt() {
+                        break;
+                    }
                     self.min_d2 = self.min_d2.min(d2(p, q));
                 }
             }
         }
-        self.current_row[x].clear();
-        self.current_row[x].extend_from_slice(points);
+        self.current_row[x] = sorted;
         if x + 1 == self.current_row.len() {
             core::mem::swap(&mut self.previous_row, &mut self.current_row);
         }
@@ -294,7 +311,7 @@ impl Stats {
             );
         }
         println!(
-            "  first harmonic of the in-pixel density (cos, sin): x {:+.4} {:+.4}, y {:+.4} {:+.4}",
+            "  first harmonic of the in-pixel density (cos, sin): x {:+.6} {:+.6}, y {:+.6} {:+.6}",
             2.0 * self.pixel_frequency[0].0 / n,
             -2.0 * self.pixel_frequency[0].1 / n,
             2.0 * self.pixel_frequency[1].0 / n,
