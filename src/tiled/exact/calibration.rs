@@ -71,7 +71,24 @@ use super::{Exact, ExactMethod};
 /// above, it read 4.84 in `x` (a `cos` term of +0.00013, taken at the
 /// slope `n = 8` gave, 0.11), which no run of 10⁸ points resolves (0.17
 /// to 0.31); a third billion-point run, on the new terms, then read
-/// 0.32 / 1.75. Every run is in `docs/streaming-runs.md`.
+/// 0.32 / 1.75.
+///
+/// Past `n = 64` the table had no row, so `n` = 128 to 1024 took 64's
+/// terms. At 1.34·10⁸ points (seed 2), elimination then read power 20.9 /
+/// 53.0 at 128 and 42–49 / 131–237 at 256, 512 and 1024; random dropping
+/// read 3.6–8.8. In the sixth session of 2026-11-28, elimination got rows
+/// for 128, 256, 512 and 1024:
+/// - the slopes came from two settings at 128 (`[0, 0, 0]` and `[0.03,
+///   0.06, 0.03]`): 0.087 a unit of `βx`, 0.086 of `βy` and −0.125 of
+///   `γ`, within 10 % of 64's;
+/// - each other row was solved from its run on 64's terms, then solved
+///   again from that run and a check run on seed 3 (the `βy` slope falls
+///   to 0.072 at 1024, which left 4.52 in `y` there at first).
+///
+/// Random dropping's terms, solved the same way, lie within their noise
+/// (about ±0.002) of zero from 128 up, and with none its power read 0.42 /
+/// 0.76 at 128: its table ends with a row of zeros at 128. Past 1024 the
+/// last row holds, unmeasured. Every run is in `docs/streaming-runs.md`.
 ///
 /// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
@@ -88,39 +105,19 @@ use super::{Exact, ExactMethod};
 /// averaged; the harmonic is linear in
 /// each): β from two settings, then γ from two (the script and its runs
 /// are in the journal, "Exact mode at k = 10"; the rows for `n` = 24, 32
-/// and 48 came later, at 10⁸ points). Linear in `n` between the rows, the `n = 4`
-/// values below (at `n = 1` no β helps: a quarter of the pixels are short
-/// there), the `n = 64` values above. `y` differs
+/// and 48, and from 128 to 1024, came later, at 10⁸ points). Linear in
+/// `n` between the rows, the first row's values below (at `n = 1` no β
+/// helps: a quarter of the pixels are short there), the last row's above. `y` differs
 /// from `x` because rows are settled in order and columns together: darts
 /// take room from the row below, and elimination sees the rows above
 /// settled and the row below oversampled. Other oversamplings and `k`
 /// keep these values, which then fit less well
 /// (`docs/images/exact-tradeoff.png`).
 fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
-    let table: [(f64, [f64; 5]); 7] = match method {
-        ExactMethod::Eliminate => [
-            (4.0, [0.1918, 0.0782, -0.0417, 0.2, -0.012]),
-            (8.0, [0.1223, 0.0736, 0.0072, 0.1, -0.0017]),
-            (16.0, [0.0677, 0.0809, 0.022, 0.0, 0.0]),
-            (24.0, [0.046, 0.0694, 0.0258, 0.0, 0.0]),
-            (32.0, [0.0327, 0.060, 0.0231, 0.0, 0.0]),
-            (48.0, [0.0207, 0.047, 0.0164, 0.0, 0.0]),
-            (64.0, [0.0152, 0.0384, 0.013, 0.0, 0.0]),
-        ],
-        ExactMethod::Random => [
-            (4.0, [0.314, 0.1425, -0.069, 0.2, -0.019]),
-            (8.0, [0.1339, 0.0665, -0.0156, 0.1, -0.0021]),
-            (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
-            (24.0, [0.0306, 0.0295, -0.00165, 0.0, 0.0]),
-            (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
-            // The interpolation between 32 and 64, which read 1.40 / 0.75.
-            (48.0, [0.0143, 0.01325, -0.00065, 0.0, 0.0]),
-            (64.0, [0.0077, 0.0072, 0.0, 0.0, 0.0]),
-        ],
-    };
+    let table = rows(method);
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
     let n = n as f64;
-    let mut beta = table[0].1;
+    let mut beta = table.first().map_or([0.0; 5], |row| row.1);
     for pair in table.windows(2) {
         if let [(n0, b0), (n1, b1)] = pair
             && n > *n0
@@ -132,6 +129,38 @@ fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
         }
     }
     beta
+}
+
+/// [`calibrated_bias`]'s rows: `(n, [βx, βy, γ, δ, ε])`, `n` ascending.
+fn rows(method: ExactMethod) -> &'static [(f64, [f64; 5])] {
+    match method {
+        ExactMethod::Eliminate => &[
+            (4.0, [0.1918, 0.0782, -0.0417, 0.2, -0.012]),
+            (8.0, [0.1223, 0.0736, 0.0072, 0.1, -0.0017]),
+            (16.0, [0.0677, 0.0809, 0.022, 0.0, 0.0]),
+            (24.0, [0.046, 0.0694, 0.0258, 0.0, 0.0]),
+            (32.0, [0.0327, 0.060, 0.0231, 0.0, 0.0]),
+            (48.0, [0.0207, 0.047, 0.0164, 0.0, 0.0]),
+            (64.0, [0.0152, 0.0384, 0.013, 0.0, 0.0]),
+            (128.0, [0.0068, 0.0274, 0.0076, 0.0, 0.0]),
+            (256.0, [0.0023, 0.0174, 0.0032, 0.0, 0.0]),
+            (512.0, [0.0003, 0.0112, 0.002, 0.0, 0.0]),
+            (1024.0, [0.0005, 0.0072, 0.0012, 0.0, 0.0]),
+        ],
+        ExactMethod::Random => &[
+            (4.0, [0.314, 0.1425, -0.069, 0.2, -0.019]),
+            (8.0, [0.1339, 0.0665, -0.0156, 0.1, -0.0021]),
+            (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
+            (24.0, [0.0306, 0.0295, -0.00165, 0.0, 0.0]),
+            (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
+            // The interpolation between 32 and 64, which read 1.40 / 0.75.
+            (48.0, [0.0143, 0.01325, -0.00065, 0.0, 0.0]),
+            (64.0, [0.0077, 0.0072, 0.0, 0.0, 0.0]),
+            // From 128 up the terms solved at 1.34·10⁸ points lie within
+            // their noise (about ±0.002) of zero: none at all.
+            (128.0, [0.0; 5]),
+        ],
+    }
 }
 
 /// The depth of a pixel's top band that the calibrated correction's `δ`
@@ -185,5 +214,43 @@ impl Exact {
     /// Whether [`Self::edge_factor`] can differ from 1.
     pub(super) fn corrects(&self) -> bool {
         self.bias != [0.0; 3] || self.top != 0.0 || self.side != 0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ExactMethod, calibrated_bias, rows};
+
+    /// Each method's rows ascend in `n`; the correction is a row's own
+    /// terms at its `n`, the first row's below it, the last row's past it
+    /// and the mean of two neighbouring rows halfway between them.
+    #[test]
+    fn the_correction_interpolates_its_rows_and_holds_at_the_ends() {
+        for method in [ExactMethod::Eliminate, ExactMethod::Random] {
+            let table = rows(method);
+            assert!(table.windows(2).all(|w| w[0].0 < w[1].0), "{method:?}");
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "row counts"
+            )]
+            let at = |n: f64| calibrated_bias(method, n as usize);
+            // Within rounding: a row's terms come out as `lo + 1·(hi - lo)`.
+            let close =
+                |a: [f64; 5], b: [f64; 5]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
+            for &(n, terms) in table {
+                assert!(close(at(n), terms), "{method:?} at {n}");
+            }
+            let (first, last) = (table[0], table[table.len() - 1]);
+            assert!(close(calibrated_bias(method, 1), first.1), "{method:?}");
+            assert!(close(at(last.0 * 4.0), last.1), "{method:?}");
+            for w in table.windows(2) {
+                let mid = (w[0].0 + w[1].0) / 2.0;
+                if mid.fract() == 0.0 {
+                    let halfway = core::array::from_fn(|k| (w[0].1[k] + w[1].1[k]) / 2.0);
+                    assert!(close(at(mid), halfway), "{method:?} at {mid}");
+                }
+            }
+        }
     }
 }
