@@ -88,7 +88,19 @@ use super::{Exact, ExactMethod};
 /// Random dropping's terms, solved the same way, lie within their noise
 /// (about ±0.002) of zero from 128 up, and with none its power read 0.42 /
 /// 0.76 at 128: its table ends with a row of zeros at 128. Past 1024 the
-/// last row holds, unmeasured. Every run is in `docs/streaming-runs.md`.
+/// last row holds, unmeasured.
+///
+/// Counts between the rows, at the same size (seed 1), read over 3 where
+/// the terms curve most. Elimination / random dropping, `x` / `y`:
+/// - `n = 6`: 36.4 / 62.6 and 200.4 / 70.3;
+/// - `n = 5`, once 6 had its row: 8.7 / 16.1 and 44.8 / 10.3;
+/// - `n = 12`: 12.5 / 20.4 and 29.6 / 17.0;
+/// - elimination at `n = 96`: 1.92 / 3.41; at 7: 1.18 / 2.96.
+///
+/// Each got a row, solved from that run with the slopes measured nearby
+/// and checked on seed 2. Counts 20, 40, 56, 192, and random dropping's 7
+/// and 96, read at most 2.39 between rows; the other counts between rows
+/// are unmeasured. Every run is in `docs/streaming-runs.md`.
 ///
 /// `δ` lifts the top band, which the rows above
 /// deplete (their darts kill points near it, and elimination sees their
@@ -136,12 +148,17 @@ fn rows(method: ExactMethod) -> &'static [(f64, [f64; 5])] {
     match method {
         ExactMethod::Eliminate => &[
             (4.0, [0.1918, 0.0782, -0.0417, 0.2, -0.012]),
+            (5.0, [0.1662, 0.0794, -0.0191, 0.175, -0.0069]),
+            (6.0, [0.1487, 0.077, -0.0065, 0.15, -0.0043]),
+            (7.0, [0.1339, 0.0729, 0.0013, 0.125, -0.0027]),
             (8.0, [0.1223, 0.0736, 0.0072, 0.1, -0.0017]),
+            (12.0, [0.0893, 0.0724, 0.0195, 0.05, -0.00085]),
             (16.0, [0.0677, 0.0809, 0.022, 0.0, 0.0]),
             (24.0, [0.046, 0.0694, 0.0258, 0.0, 0.0]),
             (32.0, [0.0327, 0.060, 0.0231, 0.0, 0.0]),
             (48.0, [0.0207, 0.047, 0.0164, 0.0, 0.0]),
             (64.0, [0.0152, 0.0384, 0.013, 0.0, 0.0]),
+            (96.0, [0.0083, 0.0296, 0.0091, 0.0, 0.0]),
             (128.0, [0.0068, 0.0274, 0.0076, 0.0, 0.0]),
             (256.0, [0.0023, 0.0174, 0.0032, 0.0, 0.0]),
             (512.0, [0.0003, 0.0112, 0.002, 0.0, 0.0]),
@@ -149,7 +166,10 @@ fn rows(method: ExactMethod) -> &'static [(f64, [f64; 5])] {
         ],
         ExactMethod::Random => &[
             (4.0, [0.314, 0.1425, -0.069, 0.2, -0.019]),
+            (5.0, [0.2296, 0.1084, -0.0471, 0.175, -0.0124]),
+            (6.0, [0.1835, 0.0871, -0.0325, 0.15, -0.0076]),
             (8.0, [0.1339, 0.0665, -0.0156, 0.1, -0.0021]),
+            (12.0, [0.0797, 0.0506, -0.0039, 0.05, -0.00105]),
             (16.0, [0.0567, 0.053, -0.002, 0.0, 0.0]),
             (24.0, [0.0306, 0.0295, -0.00165, 0.0, 0.0]),
             (32.0, [0.0209, 0.0193, -0.0013, 0.0, 0.0]),
