@@ -116,15 +116,14 @@ use super::{Exact, ExactMethod};
 /// pixels for `n` = 4, 8, 16, 64, `δ` 0.2, 0.1, 0, 0; seeds 1 and 2
 /// averaged; the harmonic is linear in
 /// each): β from two settings, then γ from two (the script and its runs
-/// are in the journal, "Exact mode at k = 10"; the rows for `n` = 24, 32
-/// and 48, and from 128 to 1024, came later, at 10⁸ points). Linear in
-/// `n` between the rows, the first row's values below (at `n = 1` no β
-/// helps: a quarter of the pixels are short there), the last row's above. `y` differs
-/// from `x` because rows are settled in order and columns together: darts
-/// take room from the row below, and elimination sees the rows above
-/// settled and the row below oversampled. Other oversamplings and `k`
-/// keep these values, which then fit less well
-/// (`docs/images/exact-tradeoff.png`).
+/// are in the journal, "Exact mode at k = 10"; the other rows came later,
+/// at 10⁸ points). Linear in `n` between the rows, the first row's values
+/// below (at `n = 1` no β helps: a quarter of the pixels are short there),
+/// the last row's above. `y` differs from `x` because rows are settled in
+/// order and columns together: darts take room from the row below, and
+/// elimination sees the rows above settled and the row below oversampled.
+/// Other oversamplings and `k` keep these values, which then fit less
+/// well (`docs/images/exact-tradeoff.png`).
 fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
     let table = rows(method);
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
