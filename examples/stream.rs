@@ -224,11 +224,13 @@ impl Stats {
             let left = x.checked_sub(1).map(|l| &self.current_row[l]);
             let above = (x.saturating_sub(1)..=(x + 1).min(self.previous_row.len() - 1))
                 .map(|k| &self.previous_row[k]);
+            // The same test as above, on both sides of `p` (the cells are
+            // sorted by `x`, so the far left is a prefix).
             for cell in left.into_iter().chain(above) {
-                let reach = self.min_d2.sqrt();
-                let start = cell.partition_point(|q| q[0] <= p[0] - reach);
+                let start =
+                    cell.partition_point(|q| q[0] < p[0] && (p[0] - q[0]).powi(2) >= self.min_d2);
                 for q in &cell[start..] {
-                    if q[0] >= p[0] + self.min_d2.sqrt() {
+                    if q[0] > p[0] && (q[0] - p[0]).powi(2) >= self.min_d2 {
                         break;
                     }
                     self.min_d2 = self.min_d2.min(d2(p, q));
