@@ -167,6 +167,10 @@ impl Schemes {
     }
 }
 
+/// Side frequencies measured beside the pixel frequency: `k` = 1, 2, 4,
+/// …, 2¹¹ cycles across the raster, each sign.
+const SIDE_STEPS: usize = 12;
+
 /// Per-pixel statistics accumulated over the stream.
 #[derive(Default)]
 struct Stats {
@@ -179,6 +183,15 @@ struct Stats {
     /// Σ exp(-2πi·x) and Σ exp(-2πi·y): the Fourier coefficient of the set
     /// at the pixel frequency along each axis.
     pixel_frequency: [(f64, f64); 2],
+    /// Beside it: `Σ exp(-2πi·(x ± k·y/H))` (the first row, [`SIDE_STEPS`]
+    /// values of `k`, each sign) and `Σ exp(-2πi·(y ± k·x/W))` (the
+    /// second), where a pattern that drifts across the raster would show.
+    side: [[[(f64, f64); 2]; SIDE_STEPS]; 2],
+    /// `Σ exp(-2πi·(x + y))` and `Σ exp(-2πi·(x - y))`: the pixel
+    /// lattice's diagonal frequencies.
+    diagonal: [(f64, f64); 2],
+    /// The raster's size, for the phases across it.
+    size: (f64, f64),
     /// Points by tenth of a pixel along x and along y.
     profile: [[u64; 10]; 2],
     /// Smallest squared distance between points in the same or adjacent
@@ -189,10 +202,11 @@ struct Stats {
 }
 
 impl Stats {
-    fn new(width: u32) -> Self {
+    fn new(width: u32, height: u32) -> Self {
         let w = width as usize;
         Self {
             min_d2: f64::INFINITY,
+            size: (f64::from(width), f64::from(height)),
             previous_row: vec![Vec::new(); w],
             current_row: vec![Vec::new(); w],
             ..Self::default()
@@ -268,10 +282,35 @@ impl Stats {
                 let bin = ((f * 10.0) as usize).min(9);
                 self.profile[axis][bin] += 1;
             }
+            let mut at_pixel = [(0.0, 0.0); 2];
             for (axis, f) in [fx, fy].into_iter().enumerate() {
                 let (s, c) = (core::f64::consts::TAU * f).sin_cos();
                 self.pixel_frequency[axis].0 += c;
                 self.pixel_frequency[axis].1 -= s;
+                at_pixel[axis] = (c, -s);
+            }
+            let ((a, b), (c, d)) = (at_pixel[0], at_pixel[1]);
+            self.diagonal[0].0 += a * c - b * d;
+            self.diagonal[0].1 += a * d + b * c;
+            self.diagonal[1].0 += a * c + b * d;
+            self.diagonal[1].1 += b * c - a * d;
+            // The phase across the raster along the other axis, for
+            // k = 1, 2, 4, …: squared from k = 1 step by step.
+            for (axis, across) in [p[1] / self.size.1, p[0] / self.size.0]
+                .into_iter()
+                .enumerate()
+            {
+                let (s, c) = (core::f64::consts::TAU * across).sin_cos();
+                let mut z = (c, -s);
+                let h = at_pixel[axis];
+                for slot in &mut self.side[axis] {
+                    // h·z and h·conj(z).
+                    slot[0].0 += h.0 * z.0 - h.1 * z.1;
+                    slot[0].1 += h.0 * z.1 + h.1 * z.0;
+                    slot[1].0 += h.0 * z.0 + h.1 * z.1;
+                    slot[1].1 += h.1 * z.0 - h.0 * z.1;
+                    z = (z.0 * z.0 - z.1 * z.1, 2.0 * z.0 * z.1);
+                }
             }
         }
     }
@@ -321,6 +360,16 @@ impl Stats {
         );
         let [px, py] = self.power();
         println!("  power at the pixel frequency (1 = no structure): x {px:.2}, y {py:.2}");
+        let side = self.side_power();
+        println!(
+            "  power beside it, k = ±1, ±2, ±4 … up to a quarter of the raster's cycles across it (mean, max): x {:.2} {:.2}, y {:.2} {:.2}",
+            side[0].0, side[0].1, side[1].0, side[1].1
+        );
+        let diagonal = self.diagonal.map(|(c, s)| (c * c + s * s) / n);
+        println!(
+            "  power at the diagonal pixel frequencies (1, 1) and (1, -1): {:.2}, {:.2}",
+            diagonal[0], diagonal[1]
+        );
     }
 
     /// Density in the left, right, top and bottom 0.1-pixel bands of the
@@ -338,6 +387,28 @@ impl Stats {
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let n = self.points as f64;
         self.pixel_frequency.map(|(c, s)| (c * c + s * s) / n)
+    }
+
+    /// The periodogram's mean and largest value at the side frequencies
+    /// ([`Stats::side`]), per axis.
+    fn side_power(&self) -> [(f64, f64); 2] {
+        #[expect(clippy::cast_precision_loss, reason = "statistics")]
+        let n = self.points as f64;
+        // The other axis's size: `k` up to a quarter of it, short of the
+        // lattice's own frequencies `(1, ±1)` at `k` = the size.
+        let across = [self.size.1, self.size.0];
+        core::array::from_fn(|axis| {
+            let values: Vec<f64> = self.side[axis]
+                .iter()
+                .zip(0..)
+                .take_while(|&(_, j)| f64::from(1u32 << j) <= across[axis] / 4.0)
+                .flat_map(|(pair, _)| pair)
+                .map(|(c, s)| (c * c + s * s) / n)
+                .collect();
+            #[expect(clippy::cast_precision_loss, reason = "a few values")]
+            let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
+            (mean, values.iter().copied().fold(0.0, f64::max))
+        })
     }
 
     /// ρ of the smallest distance measured, for the points seen in `area`.
@@ -618,7 +689,7 @@ fn main() -> ExitCode {
         else {
             continue;
         };
-        let mut stats = Stats::new(width);
+        let mut stats = Stats::new(width, height);
         let mut buf = Vec::new();
         let start = Instant::now();
         let cpu_start = common::thread_cpu_seconds();

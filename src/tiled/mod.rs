@@ -215,9 +215,12 @@ impl TiledBuilder {
     /// `examples/stream.rs` so that the density's first harmonic across a
     /// pixel vanishes, with, at small `n`, a term that favours each pixel's
     /// top band (the rows above deplete it) and one that favours its left
-    /// half (short pixels are mended left to right); setting β here
-    /// replaces all of them, and `[0.0, 0.0, 0.0]` turns the correction
-    /// off. Ignored outside exact mode.
+    /// half (short pixels are mended left to right). From `n = 2` up, the
+    /// terms are then trimmed after each row by feedback from the in-pixel
+    /// density the rows so far kept, which holds the whole stream's pixel
+    /// pattern down at any `n` and size. Setting β here replaces the table,
+    /// the other terms and the feedback, and `[0.0, 0.0, 0.0]` turns the
+    /// correction off. Ignored outside exact mode.
     #[must_use]
     pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
         self.exact_bias = Some(beta);

@@ -1,6 +1,11 @@
 //! Exact mode's edge correction: how readily a point is dropped for where
 //! it lies in its pixel, calibrated so that the kept set shows no pixel
-//! pattern ([`calibrated_bias`], [`Exact::edge_factor`]).
+//! pattern ([`calibrated_bias`], [`Exact::edge_factor`]). From `n = 2` up
+//! the calibrated terms are where a stream starts: `feedback.rs` trims
+//! them row by row from what the stream kept, so a row's residual (the
+//! table's, between its rows or past them) no longer builds up over a
+//! frame. The table still sets the trims' starting point, the top band's
+//! `δ` (which the feedback leaves alone) and the correction at `n = 1`.
 
 use super::{Exact, ExactMethod};
 

@@ -62,6 +62,9 @@
 //! - `mend.rs`: step 2, the darts;
 //! - `elimination.rs` and `dropping.rs`: step 3 by each [`ExactMethod`];
 //! - `calibration.rs`: the edge correction both methods weigh points by;
+//! - `feedback.rs`: that correction trimmed after each row from the
+//!   in-pixel harmonic the rows settled so far kept, so that no residual
+//!   of the table builds up into a pixel pattern over a frame;
 //! - `cells.rs`: the band's local grid, which elimination and top-ups
 //!   search.
 //!
@@ -72,10 +75,12 @@ mod calibration;
 mod cells;
 mod dropping;
 mod elimination;
+mod feedback;
 mod mend;
 
 use super::window::Window;
 use crate::vector::distance_squared;
+use feedback::Feedback;
 use rand::Rng;
 use std::collections::BinaryHeap;
 
@@ -189,6 +194,11 @@ pub(crate) struct Exact {
     top: f64,
     /// Its `ε`: 0 when the caller set the correction.
     side: f64,
+    /// `[βx, βy, γ, ε]` as calibrated, before the feedback's trims, and
+    /// the feedback (`feedback.rs`); `None` when the caller set the
+    /// correction.
+    base: [f64; 4],
+    feedback: Option<Feedback>,
     /// `2rₑ`: the reach of the elimination weight, and its inverse.
     reach: f64,
     inv_reach: f64,
@@ -270,6 +280,9 @@ impl Exact {
     /// Settings for `n` points per pixel, thinned by `method` from a sweep
     /// of radius `radius`.
     pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
+        // At `n = 1` a quarter of the pixels are short and no term moves
+        // the pattern (`calibration.rs`): nothing to feed back.
+        let feedback = (bias.is_none() && n >= 2).then(|| Feedback::new(method));
         let (bias, top, side) = Self::correction(method, n, bias);
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
@@ -304,6 +317,8 @@ impl Exact {
             bias,
             top,
             side,
+            base: [bias[0], bias[1], bias[2], side],
+            feedback,
             reach,
             inv_reach: 1.0 / reach,
             radius_squared: radius * radius,
@@ -512,6 +527,16 @@ impl Exact {
                     list.push(p);
                 }
             }
+        }
+        if let Some(feedback) = &mut self.feedback {
+            feedback.observe((0..width).flat_map(|x| window.slot(x, y).kept.iter()));
+            let terms = core::array::from_fn(|k| {
+                self.base.get(k).copied().unwrap_or(0.0)
+                    + feedback.trim().get(k).copied().unwrap_or(0.0)
+            });
+            let [bx, by, g, e] = terms;
+            self.bias = [bx, by, g];
+            self.side = e;
         }
         self.strip_row = None;
         if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
