@@ -167,6 +167,22 @@ impl Schemes {
     }
 }
 
+/// The pixel lattice's frequencies `(a, b)` (cycles per pixel) measured
+/// besides `(1, 0)` and `(0, 1)`: the diagonals first, then the rest with
+/// `|a|, |b| <= 2` (one of each pair `±(a, b)`).
+const LATTICE: [(i32, i32); 10] = [
+    (1, 1),
+    (1, -1),
+    (2, 0),
+    (0, 2),
+    (2, 1),
+    (2, -1),
+    (1, 2),
+    (1, -2),
+    (2, 2),
+    (2, -2),
+];
+
 /// Side frequencies measured beside the pixel frequency: `k` = 1, 2, 4,
 /// …, 2¹¹ cycles across the raster, each sign.
 const SIDE_STEPS: usize = 12;
@@ -187,9 +203,9 @@ struct Stats {
     /// values of `k`, each sign) and `Σ exp(-2πi·(y ± k·x/W))` (the
     /// second), where a pattern that drifts across the raster would show.
     side: [[[(f64, f64); 2]; SIDE_STEPS]; 2],
-    /// `Σ exp(-2πi·(x + y))` and `Σ exp(-2πi·(x - y))`: the pixel
-    /// lattice's diagonal frequencies.
-    diagonal: [(f64, f64); 2],
+    /// `Σ exp(-2πi·(a·x + b·y))` at the pixel lattice's other
+    /// frequencies ([`LATTICE`]).
+    lattice: [(f64, f64); LATTICE.len()],
     /// The raster's size, for the phases across it.
     size: (f64, f64),
     /// Points by tenth of a pixel along x and along y.
@@ -289,11 +305,23 @@ impl Stats {
                 self.pixel_frequency[axis].1 -= s;
                 at_pixel[axis] = (c, -s);
             }
-            let ((a, b), (c, d)) = (at_pixel[0], at_pixel[1]);
-            self.diagonal[0].0 += a * c - b * d;
-            self.diagonal[0].1 += a * d + b * c;
-            self.diagonal[1].0 += a * c + b * d;
-            self.diagonal[1].1 += b * c - a * d;
+            let mul = |p: (f64, f64), q: (f64, f64)| (p.0 * q.0 - p.1 * q.1, p.0 * q.1 + p.1 * q.0);
+            let (u1, v1) = (at_pixel[0], at_pixel[1]);
+            let (u2, v2) = (mul(u1, u1), mul(v1, v1));
+            for (slot, &(a, b)) in self.lattice.iter_mut().zip(&LATTICE) {
+                let u = if a == 1 { u1 } else { u2 };
+                let v = match b {
+                    0 => (1.0, 0.0),
+                    1 => v1,
+                    2 => v2,
+                    -1 => (v1.0, -v1.1),
+                    _ => (v2.0, -v2.1),
+                };
+                let u = if a == 0 { (1.0, 0.0) } else { u };
+                let z = mul(u, v);
+                slot.0 += z.0;
+                slot.1 += z.1;
+            }
             // The phase across the raster along the other axis, for
             // k = 1, 2, 4, …: squared from k = 1 step by step.
             for (axis, across) in [p[1] / self.size.1, p[0] / self.size.0]
@@ -365,10 +393,19 @@ impl Stats {
             "  power beside it, k = ±1, ±2, ±4 … up to a quarter of the raster's cycles across it (mean, max): x {:.2} {:.2}, y {:.2} {:.2}",
             side[0].0, side[0].1, side[1].0, side[1].1
         );
-        let diagonal = self.diagonal.map(|(c, s)| (c * c + s * s) / n);
+        let lattice = self.lattice.map(|(c, s)| (c * c + s * s) / n);
+        let (rest, at) =
+            lattice
+                .iter()
+                .zip(&LATTICE)
+                .skip(2)
+                .fold(
+                    (0.0, (0, 0)),
+                    |best, (&p, &ab)| if p > best.0 { (p, ab) } else { best },
+                );
         println!(
-            "  power at the diagonal pixel frequencies (1, 1) and (1, -1): {:.2}, {:.2}",
-            diagonal[0], diagonal[1]
+            "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b), |a|, |b| <= 2: {rest:.2} at {at:?}",
+            lattice[0], lattice[1]
         );
     }
 

@@ -210,7 +210,10 @@ impl Exact {
     }
 
     /// How readily point `i` is dropped for where it lies in its pixel,
-    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`,
+    /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`
+    /// minus the cross terms `ζcc·h(u)·h(v) + ζss·(2u - 1)·(2v - 1) +
+    /// ζcs·h(u)·(2v - 1) + ζsc·(2u - 1)·h(v)` (set only by `feedback.rs`,
+    /// against the pixel lattice's diagonal frequencies), never below 0,
     /// with `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
     /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
     /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
@@ -228,16 +231,26 @@ impl Exact {
         let v = p[1] - p[1].floor();
         // The top band's ramp, minus its mean over the pixel.
         let t = (1.0 - v / TOP_BAND).max(0.0) - TOP_BAND / 2.0;
-        1.0 - self.bias[0] * h(p[0])
-            - self.bias[1] * h(p[1])
-            - self.bias[2] * (2.0 * v - 1.0)
+        // Never below 0: a preference, not a sign. The table's terms keep
+        // it above 0.4; only trims near their bound (`feedback.rs`, at
+        // `n` = 2 or 3) could take a corner below 0.
+        let (hu, hv, ou, ov) = (h(p[0]), h(p[1]), 2.0 * u - 1.0, 2.0 * v - 1.0);
+        let [cc, ss, cs, sc] = self.cross;
+        (1.0 - self.bias[0] * hu
+            - self.bias[1] * hv
+            - self.bias[2] * ov
             - self.top * t
-            - self.side * (2.0 * u - 1.0)
+            - self.side * ou
+            - cc * hu * hv
+            - ss * ou * ov
+            - cs * hu * ov
+            - sc * ou * hv)
+            .max(0.0)
     }
 
     /// Whether [`Self::edge_factor`] can differ from 1.
     pub(super) fn corrects(&self) -> bool {
-        self.bias != [0.0; 3] || self.top != 0.0 || self.side != 0.0
+        self.bias != [0.0; 3] || self.top != 0.0 || self.side != 0.0 || self.cross != [0.0; 4]
     }
 }
 

@@ -24,37 +24,67 @@
 
 use super::ExactMethod;
 
+/// The terms the feedback trims: `[βx, βy, γ, ε]` of the calibrated
+/// correction, then the four cross terms `[ζcc, ζss, ζcs, ζsc]` of
+/// [`Exact::edge_factor`](super::Exact::edge_factor) (0 in the table).
+pub(super) const TERMS: usize = 8;
+
 /// Points over which a trim step is spread: a row of `m` points moves the
-/// trim by `m / SPAN` of what zeroes its harmonic (up to half of it). A
-/// residual `h₀` at the start leaves about `h₀·SPAN` in the sums, which
-/// at 10⁶ points is power `(h₀·SPAN)² / 4N`: 0.007 for `h₀ = 0.005`.
-const SPAN: f64 = 131_072.0;
+/// trim by `m / span` of what zeroes its harmonic (up to half of it). A
+/// residual `h₀` at the start leaves about `h₀·span/2` in the sums, which
+/// at 10⁶ points is power `(h₀·span/2)² / N`: 0.1 for `h₀ = 0.005`. The
+/// cross terms move their harmonics less (the slopes below), so the same
+/// noise would swing them more: they take a span 16 times longer.
+const SPANS: [f64; TERMS] = [
+    131_072.0,
+    131_072.0,
+    131_072.0,
+    131_072.0,
+    2_097_152.0,
+    2_097_152.0,
+    2_097_152.0,
+    2_097_152.0,
+];
 
 /// The largest trim of any term, in its own units: a bound for counts
 /// where the terms cannot cancel the pattern (at `n = 1` a quarter of the
-/// pixels are short, and no term helps).
-const MAX_TRIM: f64 = 0.3;
+/// pixels are short, and no term helps; at `n = 2`, random dropping).
+const MAX_TRIM: [f64; TERMS] = [0.3, 0.3, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0];
 
-/// How each term `[βx, βy, γ, ε]` moves the harmonic it cancels (`x`
-/// `cos`, `y` `cos`, `y` `sin`, `x` `sin`, each `2·mean`), measured at
+/// How each term moves the harmonic it cancels. `[βx, βy, γ, ε]` against
+/// `x` `cos`, `y` `cos`, `y` `sin`, `x` `sin` (each `2·mean`), measured at
 /// 1.34·10⁸ points (`docs/streaming-runs.md`; elimination 0.072–0.13 a
 /// unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of `ε`; random
-/// dropping 0.057–0.067, −0.092 to −0.10 and −0.10). A slope within a
-/// factor of two of the true one keeps the loop stable; the true slopes
-/// lie within 0.6–1.3 of these.
-fn slopes(method: ExactMethod) -> [f64; 4] {
-    match method {
-        ExactMethod::Eliminate => [0.1, 0.1, -0.125, -0.16],
-        ExactMethod::Random => [0.06, 0.065, -0.095, -0.1],
-    }
+/// dropping 0.057–0.067, −0.092 to −0.10 and −0.10). The cross terms
+/// against `cos x·cos y`, `sin x·sin y`, `cos x·sin y` and `sin x·cos y`
+/// (each `4·mean`), from the same response: the kept density moves as
+/// `1 + c·(term)·(shape)`, `c` ≈ 0.49 (elimination) and 0.3 (random
+/// dropping) from the measured slopes of `βx` and `ε`, and the shapes'
+/// overlaps with the harmonics are `1/π²` (`h` with `cos`) and `−1/π`
+/// (`2t − 1` with `sin`). A slope within a factor of two of the true one
+/// keeps the loop stable.
+fn slopes(method: ExactMethod) -> [f64; TERMS] {
+    let (pi2, pi3, pi4) = (
+        core::f64::consts::PI.powi(2),
+        core::f64::consts::PI.powi(3),
+        core::f64::consts::PI.powi(4),
+    );
+    let (c, first) = match method {
+        ExactMethod::Eliminate => (0.49, [0.1, 0.1, -0.125, -0.16]),
+        ExactMethod::Random => (0.3, [0.06, 0.065, -0.095, -0.1]),
+    };
+    let cross = [4.0 * c / pi4, 4.0 * c / pi2, -4.0 * c / pi3, -4.0 * c / pi3];
+    let [a, b, g, e] = first;
+    let [cc, ss, cs, sc] = cross;
+    [a, b, g, e, cc, ss, cs, sc]
 }
 
-/// The trims added to the calibrated `[βx, βy, γ, ε]`, and the slopes
+/// The trims added to the correction's terms ([`TERMS`]), and the slopes
 /// that turn a harmonic into a trim.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Feedback {
-    slopes: [f64; 4],
-    trim: [f64; 4],
+    slopes: [f64; TERMS],
+    trim: [f64; TERMS],
 }
 
 impl Feedback {
@@ -62,36 +92,56 @@ impl Feedback {
     pub(super) fn new(method: ExactMethod) -> Self {
         Self {
             slopes: slopes(method),
-            trim: [0.0; 4],
+            trim: [0.0; TERMS],
         }
     }
 
-    /// What to add to `[βx, βy, γ, ε]`.
-    pub(super) fn trim(&self) -> [f64; 4] {
+    /// What to add to `[βx, βy, γ, ε, ζcc, ζss, ζcs, ζsc]`.
+    pub(super) fn trim(&self) -> [f64; TERMS] {
         self.trim
     }
 
-    /// Takes in a settled row's final points: their harmonics move the
-    /// trims for the rows after it.
-    pub(super) fn observe<'a>(&mut self, points: impl Iterator<Item = &'a [f64; 2]>) {
-        // Sums of `cos` and `sin` of `2π·frac`: x cos, y cos, y sin, x sin.
-        let mut sums = [0.0; 4];
+    /// Takes in a settled row's final points, each as where it lies in its
+    /// pixel (`[u, v]` in `[0, 1)²`): their harmonics move the trims for
+    /// the rows after it.
+    pub(super) fn observe(&mut self, points: impl Iterator<Item = [f64; 2]>) {
+        // Harmonics, each with the factor that makes it the density's
+        // Fourier coefficient: `2·cos` and `2·sin` of `2π·frac` (x cos, y
+        // cos, y sin, x sin), then the products `4·cos·cos`, `4·sin·sin`,
+        // `4·cos x·sin y`, `4·sin x·cos y`.
+        let mut sums = [0.0; TERMS];
         let mut m = 0u64;
         for p in points {
-            let (cx, sx) = turn(p[0] - p[0].floor());
-            let (cy, sy) = turn(p[1] - p[1].floor());
-            sums[0] += cx;
-            sums[1] += cy;
-            sums[2] += sy;
-            sums[3] += sx;
+            let (cx, sx) = turn(p[0]);
+            let (cy, sy) = turn(p[1]);
+            let terms = [
+                2.0 * cx,
+                2.0 * cy,
+                2.0 * sy,
+                2.0 * sx,
+                4.0 * cx * cy,
+                4.0 * sx * sy,
+                4.0 * cx * sy,
+                4.0 * sx * cy,
+            ];
+            for (sum, t) in sums.iter_mut().zip(terms) {
+                *sum += t;
+            }
             m += 1;
         }
         #[expect(clippy::cast_precision_loss, reason = "points in a row")]
         let m = m as f64;
-        // The harmonic is `2·sum / m`, the gain `m / max(SPAN, 2m)`.
-        let scale = 2.0 / SPAN.max(2.0 * m);
-        for ((t, &s), &slope) in self.trim.iter_mut().zip(&sums).zip(&self.slopes) {
-            *t = (*t - scale * s / slope).clamp(-MAX_TRIM, MAX_TRIM);
+        // A harmonic is `sum / m`, the gain `m / max(span, 2m)`.
+        for (k, t) in self.trim.iter_mut().enumerate() {
+            let (Some(&sum), Some(&slope), Some(&span), Some(&bound)) = (
+                sums.get(k),
+                self.slopes.get(k),
+                SPANS.get(k),
+                MAX_TRIM.get(k),
+            ) else {
+                continue;
+            };
+            *t = (*t - sum / (slope * span.max(2.0 * m))).clamp(-bound, bound);
         }
     }
 }
@@ -107,19 +157,38 @@ pub(super) fn turn(f: f64) -> (f64, f64) {
     // Horner's form: sin a = a·(1 - a²/(2·3)·(1 - a²/(4·5)·(…))), to a¹³;
     // cos a = 1 - a²/(1·2)·(1 - a²/(3·4)·(…)), to a¹⁴.
     let mut s = 1.0;
-    for k in (1..=6).rev() {
-        let k = f64::from(k);
-        s = 1.0 - a2 / ((2.0 * k) * (2.0 * k + 1.0)) * s;
+    for k in SIN_STEPS.iter().rev() {
+        s = 1.0 - a2 * k * s;
     }
     let mut c = 1.0;
-    for k in (1..=7).rev() {
-        let k = f64::from(k);
-        c = 1.0 - a2 / ((2.0 * k - 1.0) * (2.0 * k)) * c;
+    for k in COS_STEPS.iter().rev() {
+        c = 1.0 - a2 * k * c;
     }
     let s = a * s;
     // 2πf = 2a + π: cos(2a + π) = 2 sin²a - 1, sin(2a + π) = -2 sin a cos a.
     (2.0 * s * s - 1.0, -2.0 * s * c)
 }
+
+/// `1 / (2k·(2k + 1))` for `k` = 1 to 6: the sine series' steps.
+const SIN_STEPS: [f64; 6] = [
+    1.0 / 6.0,
+    1.0 / 20.0,
+    1.0 / 42.0,
+    1.0 / 72.0,
+    1.0 / 110.0,
+    1.0 / 156.0,
+];
+
+/// `1 / ((2k - 1)·2k)` for `k` = 1 to 7: the cosine series' steps.
+const COS_STEPS: [f64; 7] = [
+    1.0 / 2.0,
+    1.0 / 12.0,
+    1.0 / 30.0,
+    1.0 / 56.0,
+    1.0 / 90.0,
+    1.0 / 132.0,
+    1.0 / 182.0,
+];
 
 #[cfg(test)]
 mod tests {
@@ -175,12 +244,44 @@ mod tests {
                     *t += w * v;
                 }
             }
-            fb.observe(row.iter());
+            fb.observe(
+                row.iter()
+                    .map(|p| [p[0] - p[0].floor(), p[1] - p[1].floor()]),
+            );
         }
         for k in 0..4 {
             assert!(closed[k].abs() < 1.0, "term {k}: {}", closed[k]);
             assert!(open[k].abs() > 5.0, "term {k}: {}", open[k]);
         }
+    }
+
+    /// A row crowded at the pixels' corners (`cos x·cos y` high) moves
+    /// `ζcc` up the way `βx` moves for crowded left and right edges, to
+    /// drop more there; one along the diagonal `u = v` near (¼, ¼) and
+    /// (¾, ¾) (`sin x·sin y` high) moves `ζss`; the other cross terms,
+    /// whose harmonics such rows leave at 0, stay put.
+    #[test]
+    fn the_cross_terms_answer_their_own_harmonics() {
+        let mut corners = Feedback::new(ExactMethod::Random);
+        let row: Vec<[f64; 2]> = (0..1000).map(|i| [f64::from(i), 0.0]).collect();
+        corners.observe(row.iter().map(|p| [p[0] - p[0].floor(), p[1]]));
+        let t = corners.trim();
+        assert!(t[0] < 0.0 && t[4] < 0.0, "{t:?}");
+        assert!(t[6].abs() < 1e-9 && t[7].abs() < 1e-9, "{t:?}");
+        let mut diagonal = Feedback::new(ExactMethod::Eliminate);
+        let row: Vec<[f64; 2]> = (0..1000)
+            .map(|i| {
+                let f = if i % 2 == 0 { 0.25 } else { 0.75 };
+                [f64::from(i) + f, f]
+            })
+            .collect();
+        diagonal.observe(row.iter().map(|p| [p[0] - p[0].floor(), p[1]]));
+        let t = diagonal.trim();
+        assert!(t[5] < 0.0, "{t:?}");
+        assert!(
+            t[4].abs() < 1e-9 && t[6].abs() < 1e-9 && t[7].abs() < 1e-9,
+            "{t:?}"
+        );
     }
 
     /// `m` points whose `(x cos, y cos, y sin, x sin)` harmonics (`2·mean`)

@@ -194,6 +194,8 @@ pub(crate) struct Exact {
     top: f64,
     /// Its `ε`: 0 when the caller set the correction.
     side: f64,
+    /// Its cross terms `[ζcc, ζss, ζcs, ζsc]`: 0 but for the feedback.
+    cross: [f64; 4],
     /// `[βx, βy, γ, ε]` as calibrated, before the feedback's trims, and
     /// the feedback (`feedback.rs`); `None` when the caller set the
     /// correction.
@@ -317,6 +319,7 @@ impl Exact {
             bias,
             top,
             side,
+            cross: [0.0; 4],
             base: [bias[0], bias[1], bias[2], side],
             feedback,
             reach,
@@ -529,14 +532,24 @@ impl Exact {
             }
         }
         if let Some(feedback) = &mut self.feedback {
-            feedback.observe((0..width).flat_map(|x| window.slot(x, y).kept.iter()));
-            let terms = core::array::from_fn(|k| {
-                self.base.get(k).copied().unwrap_or(0.0)
-                    + feedback.trim().get(k).copied().unwrap_or(0.0)
-            });
-            let [bx, by, g, e] = terms;
-            self.bias = [bx, by, g];
-            self.side = e;
+            // Where each point lies in its pixel: `p - x` is exact, as `p`
+            // lies in `[x, x + 1)` (Sterbenz), the bits of `p - floor(p)`.
+            #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
+            let top = y as f64;
+            feedback.observe((0..width).flat_map(|x| {
+                #[expect(clippy::cast_precision_loss, reason = "pixel indices < 2^32")]
+                let left = x as f64;
+                window
+                    .slot(x, y)
+                    .kept
+                    .iter()
+                    .map(move |p| [p[0] - left, p[1] - top])
+            }));
+            let [bx, by, g, e, cc, ss, cs, sc] = feedback.trim();
+            let [bx0, by0, g0, e0] = self.base;
+            self.bias = [bx0 + bx, by0 + by, g0 + g];
+            self.side = e0 + e;
+            self.cross = [cc, ss, cs, sc];
         }
         self.strip_row = None;
         if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
