@@ -7,6 +7,7 @@
 //! frame. The table still sets the trims' starting point, the top band's
 //! `δ` (which the feedback leaves alone) and the correction at `n = 1`.
 
+use super::feedback::Feedback;
 use super::{Exact, ExactMethod};
 
 /// The edge correction `[βx, βy, γ, δ, ε]` (see [`Exact::edge_factor`]) at
@@ -184,6 +185,24 @@ fn rows(method: ExactMethod) -> &'static [(f64, [f64; 5])] {
             // their noise (about ±0.002) of zero: none at all.
             (128.0, [0.0; 5]),
         ],
+    }
+}
+
+/// The feedback that trims the calibrated correction (`feedback.rs`), with
+/// `method`'s slopes: how `[βx, βy, γ, ε]` move the harmonics they
+/// cancel (`x` `cos`, `y` `cos`, `y` `sin`, `x` `sin`, each `2·mean`),
+/// measured at 1.34·10⁸ points (`docs/streaming-runs.md`: elimination
+/// 0.072–0.13 a unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of
+/// `ε`; random dropping 0.057–0.067, −0.092 to −0.10 and −0.10), and the
+/// response `c` behind them (the kept density moves as `1 + c·β·h`):
+/// 0.49 and 0.3, `βx`'s slope over `2/π²`. The response differs by shape:
+/// `ε`'s slope over `−2/π` gives 0.25 and 0.16, so the cross terms'
+/// slopes may be up to twice the true ones, which slows their loop but
+/// keeps it stable.
+pub(super) fn feedback(method: ExactMethod) -> Feedback {
+    match method {
+        ExactMethod::Eliminate => Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49),
+        ExactMethod::Random => Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3),
     }
 }
 

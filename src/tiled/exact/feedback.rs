@@ -22,8 +22,6 @@
 //! seed still gives the same points; it runs only with the calibrated
 //! correction, never with a caller's `exact_edge_bias`.
 
-use super::ExactMethod;
-
 /// The terms the feedback trims: `[βx, βy, γ, ε]` of the calibrated
 /// correction, then the four cross terms `[ζcc, ζss, ζcs, ζsc]` of
 /// [`Exact::edge_factor`](super::Exact::edge_factor) (0 in the table).
@@ -51,32 +49,23 @@ const SPANS: [f64; TERMS] = [
 /// pixels are short, and no term helps; at `n = 2`, random dropping).
 const MAX_TRIM: [f64; TERMS] = [0.3, 0.3, 0.3, 0.3, 1.0, 1.0, 1.0, 1.0];
 
-/// How each term moves the harmonic it cancels. `[βx, βy, γ, ε]` against
-/// `x` `cos`, `y` `cos`, `y` `sin`, `x` `sin` (each `2·mean`), measured at
-/// 1.34·10⁸ points (`docs/streaming-runs.md`; elimination 0.072–0.13 a
-/// unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of `ε`; random
-/// dropping 0.057–0.067, −0.092 to −0.10 and −0.10). The cross terms
-/// against `cos x·cos y`, `sin x·sin y`, `cos x·sin y` and `sin x·cos y`
-/// (each `4·mean`), from the same response: the kept density moves as
-/// `1 + c·(term)·(shape)`, `c` ≈ 0.49 (elimination) and 0.3 (random
-/// dropping) from the measured slopes of `βx` and `ε`, and the shapes'
-/// overlaps with the harmonics are `1/π²` (`h` with `cos`) and `−1/π`
-/// (`2t − 1` with `sin`). A slope within a factor of two of the true one
-/// keeps the loop stable.
-fn slopes(method: ExactMethod) -> [f64; TERMS] {
-    let (pi2, pi3, pi4) = (
-        core::f64::consts::PI.powi(2),
-        core::f64::consts::PI.powi(3),
-        core::f64::consts::PI.powi(4),
-    );
-    let (c, first) = match method {
-        ExactMethod::Eliminate => (0.49, [0.1, 0.1, -0.125, -0.16]),
-        ExactMethod::Random => (0.3, [0.06, 0.065, -0.095, -0.1]),
-    };
-    let cross = [4.0 * c / pi4, 4.0 * c / pi2, -4.0 * c / pi3, -4.0 * c / pi3];
-    let [a, b, g, e] = first;
-    let [cc, ss, cs, sc] = cross;
-    [a, b, g, e, cc, ss, cs, sc]
+/// The cross terms' slopes against `cos x·cos y`, `sin x·sin y`,
+/// `cos x·sin y` and `sin x·cos y` (each `4·mean`), from the response `c`
+/// of the kept density to a term (it moves as `1 + c·(term)·(shape)`) and
+/// the shapes' overlaps with the harmonics: `1/π²` for `h` with `cos`,
+/// `−1/π` for `2t − 1` with `sin`. The axis terms' slopes are the same
+/// overlaps times `2c`, which is how `c` is read from them
+/// (`calibration.rs`, where the two odd and even shapes give `c` a factor
+/// of two apart).
+fn cross_slopes(c: f64) -> [f64; 4] {
+    let pi = core::f64::consts::PI;
+    let (pi2, pi3) = (pi * pi, pi * pi * pi);
+    [
+        4.0 * c / (pi2 * pi2),
+        4.0 * c / pi2,
+        -4.0 * c / pi3,
+        -4.0 * c / pi3,
+    ]
 }
 
 /// The trims added to the correction's terms ([`TERMS`]), and the slopes
@@ -88,10 +77,15 @@ pub(super) struct Feedback {
 }
 
 impl Feedback {
-    /// No trim yet, for `method`'s slopes.
-    pub(super) fn new(method: ExactMethod) -> Self {
+    /// No trim yet, for the axis terms' slopes `axis` (how `[βx, βy, γ,
+    /// ε]` move their harmonics) and the response `c` the cross terms'
+    /// slopes follow from ([`cross_slopes`]). A slope within a factor of
+    /// two of the true one keeps the loop stable.
+    pub(super) fn new(axis: [f64; 4], c: f64) -> Self {
+        let [a, b, g, e] = axis;
+        let [cc, ss, cs, sc] = cross_slopes(c);
         Self {
-            slopes: slopes(method),
+            slopes: [a, b, g, e, cc, ss, cs, sc],
             trim: [0.0; TERMS],
         }
     }
@@ -193,7 +187,11 @@ const COS_STEPS: [f64; 7] = [
 #[cfg(test)]
 mod tests {
     use super::{Feedback, turn};
-    use crate::tiled::exact::ExactMethod;
+
+    /// Elimination's slopes (`calibration.rs`).
+    fn eliminate() -> Feedback {
+        Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49)
+    }
 
     /// The series matches the platform's `sin_cos` to 10⁻⁷ over the pixel.
     #[test]
@@ -215,7 +213,7 @@ mod tests {
     /// without it the sum grows with the rows.
     #[test]
     fn the_feedback_keeps_the_summed_harmonic_bounded() {
-        let mut fb = Feedback::new(ExactMethod::Eliminate);
+        let mut fb = eliminate();
         let true_slopes = [0.13, 0.072, -0.133, -0.10];
         let wanted = [0.05, -0.06, 0.04, -0.05];
         let m = 4096;
@@ -262,13 +260,13 @@ mod tests {
     /// whose harmonics such rows leave at 0, stay put.
     #[test]
     fn the_cross_terms_answer_their_own_harmonics() {
-        let mut corners = Feedback::new(ExactMethod::Random);
+        let mut corners = Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3);
         let row: Vec<[f64; 2]> = (0..1000).map(|i| [f64::from(i), 0.0]).collect();
         corners.observe(row.iter().map(|p| [p[0] - p[0].floor(), p[1]]));
         let t = corners.trim();
         assert!(t[0] < 0.0 && t[4] < 0.0, "{t:?}");
         assert!(t[6].abs() < 1e-9 && t[7].abs() < 1e-9, "{t:?}");
-        let mut diagonal = Feedback::new(ExactMethod::Eliminate);
+        let mut diagonal = eliminate();
         let row: Vec<[f64; 2]> = (0..1000)
             .map(|i| {
                 let f = if i % 2 == 0 { 0.25 } else { 0.75 };
