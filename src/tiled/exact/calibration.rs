@@ -188,29 +188,29 @@ fn rows(method: ExactMethod) -> &'static [(f64, [f64; 5])] {
     }
 }
 
-/// The feedback that trims the calibrated correction (`feedback.rs`), with
-/// `method`'s slopes: how `[βx, βy, γ, ε]` move the harmonics they
-/// cancel (`x` `cos`, `y` `cos`, `y` `sin`, `x` `sin`, each `2·mean`),
-/// measured at 1.34·10⁸ points (`docs/streaming-runs.md`: elimination
-/// 0.072–0.13 a unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of
-/// `ε`; random dropping 0.057–0.067, −0.092 to −0.10 and −0.10), and the
-/// response `c` behind them (the kept density moves as `1 + c·β·h`):
-/// 0.49 and 0.3, `βx`'s slope over `2/π²`. The response differs by shape:
-/// `ε`'s slope over `−2/π` gives 0.25 and 0.16, so the cross terms'
-/// slopes may be up to twice the true ones, which slows their loop but
-/// keeps it stable.
-pub(super) fn feedback(method: ExactMethod) -> Feedback {
-    match method {
-        ExactMethod::Eliminate => Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49),
-        ExactMethod::Random => Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3),
-    }
-}
-
 /// The depth of a pixel's top band that the calibrated correction's `δ`
 /// term favours (see [`Exact::edge_factor`]), in pixels.
 const TOP_BAND: f64 = 0.2;
 
 impl Exact {
+    /// The feedback that trims the calibrated correction (`feedback.rs`), with
+    /// `method`'s slopes: how `[βx, βy, γ, ε]` move the harmonics they
+    /// cancel (`x` `cos`, `y` `cos`, `y` `sin`, `x` `sin`, each `2·mean`),
+    /// measured at 1.34·10⁸ points (`docs/streaming-runs.md`: elimination
+    /// 0.072–0.13 a unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of
+    /// `ε`; random dropping 0.057–0.067, −0.092 to −0.10 and −0.10), and the
+    /// response `c` behind them (the kept density moves as `1 + c·β·h`):
+    /// 0.49 and 0.3, `βx`'s slope over `2/π²`. The response differs by shape:
+    /// `ε`'s slope over `−2/π` gives 0.25 and 0.16, so the cross terms'
+    /// slopes may be up to twice the true ones, which slows their loop but
+    /// keeps it stable.
+    pub(super) fn feedback(method: ExactMethod) -> Feedback {
+        match method {
+            ExactMethod::Eliminate => Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49),
+            ExactMethod::Random => Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3),
+        }
+    }
+
     /// The edge correction a new [`Exact`] weighs points by: `[βx, βy, γ]`,
     /// `δ` and `ε` of [`Self::edge_factor`]; the caller's `[βx, βy, γ]`
     /// with `δ = ε = 0` if given, else [`calibrated_bias`]'s.

@@ -288,7 +288,7 @@ impl Exact {
     pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
         // At `n = 1` a quarter of the pixels are short and no term moves
         // the pattern (`calibration.rs`): nothing to feed back.
-        let feedback = (bias.is_none() && n >= 2).then(|| calibration::feedback(method));
+        let feedback = (bias.is_none() && n >= 2).then(|| Self::feedback(method));
         let (bias, top, side) = Self::correction(method, n, bias);
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
