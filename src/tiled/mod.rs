@@ -217,8 +217,10 @@ impl TiledBuilder {
     /// top band (the rows above deplete it) and one that favours its left
     /// half (short pixels are mended left to right). From `n = 2` up, the
     /// terms are then trimmed after each row by feedback from the in-pixel
-    /// density the rows so far kept, which holds the whole stream's pixel
-    /// pattern down at any `n` and size. Setting β here replaces the table,
+    /// density the rows so far kept, which holds the pattern at the pixel
+    /// frequency and its diagonals down however large the frame (measured
+    /// from `n = 3` up; at `n = 2` random dropping's trims reach their
+    /// bounds and only lower it). Setting β here replaces the table,
     /// the other terms and the feedback, and `[0.0, 0.0, 0.0]` turns the
     /// correction off. Ignored outside exact mode.
     #[must_use]
