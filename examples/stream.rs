@@ -183,6 +183,28 @@ const LATTICE: [(i32, i32); 10] = [
     (2, -2),
 ];
 
+/// The product of two complex numbers given as `(re, im)`.
+fn mul(p: (f64, f64), q: (f64, f64)) -> (f64, f64) {
+    (p.0 * q.0 - p.1 * q.1, p.0 * q.1 + p.1 * q.0)
+}
+
+/// `sum += z`, complex.
+fn add(sum: &mut (f64, f64), z: (f64, f64)) {
+    sum.0 += z.0;
+    sum.1 += z.1;
+}
+
+/// `z^k` for `k` in `-2..=2` and `|z| = 1` (a negative power is the
+/// conjugate's).
+fn power(z: (f64, f64), k: i32) -> (f64, f64) {
+    let z = if k < 0 { (z.0, -z.1) } else { z };
+    match k.unsigned_abs() {
+        0 => (1.0, 0.0),
+        1 => z,
+        _ => mul(z, z),
+    }
+}
+
 /// Side frequencies measured beside the pixel frequency: `k` = 1, 2, 4,
 /// …, 2¹¹ cycles across the raster, each sign.
 const SIDE_STEPS: usize = 12;
@@ -298,29 +320,17 @@ impl Stats {
                 let bin = ((f * 10.0) as usize).min(9);
                 self.profile[axis][bin] += 1;
             }
-            let mut at_pixel = [(0.0, 0.0); 2];
-            for (axis, f) in [fx, fy].into_iter().enumerate() {
+            // exp(-2πi·fx) and exp(-2πi·fy), as (re, im).
+            let at_pixel = [fx, fy].map(|f| {
                 let (s, c) = (core::f64::consts::TAU * f).sin_cos();
-                self.pixel_frequency[axis].0 += c;
-                self.pixel_frequency[axis].1 -= s;
-                at_pixel[axis] = (c, -s);
+                (c, -s)
+            });
+            for (sum, z) in self.pixel_frequency.iter_mut().zip(at_pixel) {
+                add(sum, z);
             }
-            let mul = |p: (f64, f64), q: (f64, f64)| (p.0 * q.0 - p.1 * q.1, p.0 * q.1 + p.1 * q.0);
-            let (u1, v1) = (at_pixel[0], at_pixel[1]);
-            let (u2, v2) = (mul(u1, u1), mul(v1, v1));
-            for (slot, &(a, b)) in self.lattice.iter_mut().zip(&LATTICE) {
-                let u = if a == 1 { u1 } else { u2 };
-                let v = match b {
-                    0 => (1.0, 0.0),
-                    1 => v1,
-                    2 => v2,
-                    -1 => (v1.0, -v1.1),
-                    _ => (v2.0, -v2.1),
-                };
-                let u = if a == 0 { (1.0, 0.0) } else { u };
-                let z = mul(u, v);
-                slot.0 += z.0;
-                slot.1 += z.1;
+            let [u, v] = at_pixel;
+            for (sum, &(a, b)) in self.lattice.iter_mut().zip(&LATTICE) {
+                add(sum, mul(power(u, a), power(v, b)));
             }
             // The phase across the raster along the other axis, for
             // k = 1, 2, 4, …: squared from k = 1 step by step.
@@ -331,13 +341,10 @@ impl Stats {
                 let (s, c) = (core::f64::consts::TAU * across).sin_cos();
                 let mut z = (c, -s);
                 let h = at_pixel[axis];
-                for slot in &mut self.side[axis] {
-                    // h·z and h·conj(z).
-                    slot[0].0 += h.0 * z.0 - h.1 * z.1;
-                    slot[0].1 += h.0 * z.1 + h.1 * z.0;
-                    slot[1].0 += h.0 * z.0 + h.1 * z.1;
-                    slot[1].1 += h.1 * z.0 - h.0 * z.1;
-                    z = (z.0 * z.0 - z.1 * z.1, 2.0 * z.0 * z.1);
+                for [plus, minus] in &mut self.side[axis] {
+                    add(plus, mul(h, z));
+                    add(minus, mul(h, (z.0, -z.1)));
+                    z = mul(z, z);
                 }
             }
         }
@@ -393,7 +400,7 @@ impl Stats {
             "  power beside it, k = ±1, ±2, ±4 … up to a quarter of the raster's cycles across it (mean, max): x {:.2} {:.2}, y {:.2} {:.2}",
             side[0].0, side[0].1, side[1].0, side[1].1
         );
-        let lattice = self.lattice.map(|(c, s)| (c * c + s * s) / n);
+        let lattice = self.lattice.map(|z| self.periodogram(z));
         let (rest, at) =
             lattice
                 .iter()
@@ -421,16 +428,19 @@ impl Stats {
     /// Periodogram value |Σ e^{-2πi f·x}|² / n at f = (W, 0) and (0, H),
     /// the pixel frequency: ≈ 1 for no structure, ≫ 1 for a pixel pattern.
     fn power(&self) -> [f64; 2] {
+        self.pixel_frequency.map(|z| self.periodogram(z))
+    }
+
+    /// `|z|² / n` for a sum `z` of `exp(-2πi f·x)` over the `n` points.
+    fn periodogram(&self, (c, s): (f64, f64)) -> f64 {
         #[expect(clippy::cast_precision_loss, reason = "statistics")]
         let n = self.points as f64;
-        self.pixel_frequency.map(|(c, s)| (c * c + s * s) / n)
+        (c * c + s * s) / n
     }
 
     /// The periodogram's mean and largest value at the side frequencies
     /// ([`Stats::side`]), per axis.
     fn side_power(&self) -> [(f64, f64); 2] {
-        #[expect(clippy::cast_precision_loss, reason = "statistics")]
-        let n = self.points as f64;
         // The other axis's size: `k` up to a quarter of it, short of the
         // lattice's own frequencies `(1, ±1)` at `k` = the size.
         let across = [self.size.1, self.size.0];
@@ -440,7 +450,7 @@ impl Stats {
                 .zip(0..)
                 .take_while(|&(_, j)| f64::from(1u32 << j) <= across[axis] / 4.0)
                 .flat_map(|(pair, _)| pair)
-                .map(|(c, s)| (c * c + s * s) / n)
+                .map(|&z| self.periodogram(z))
                 .collect();
             #[expect(clippy::cast_precision_loss, reason = "a few values")]
             let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;

@@ -242,18 +242,16 @@ impl Exact {
         let Some(p) = self.points.get(i) else {
             return 1.0;
         };
-        let h = |t: f64| {
-            let f = t - t.floor();
-            (2.0 * f - 1.0) * (2.0 * f - 1.0) - 1.0 / 3.0
-        };
         let u = p[0] - p[0].floor();
         let v = p[1] - p[1].floor();
+        // `h` and the odd shape of a fraction already in `[0, 1)`.
+        let (ou, ov) = (2.0 * u - 1.0, 2.0 * v - 1.0);
+        let (hu, hv) = (ou * ou - 1.0 / 3.0, ov * ov - 1.0 / 3.0);
         // The top band's ramp, minus its mean over the pixel.
         let t = (1.0 - v / TOP_BAND).max(0.0) - TOP_BAND / 2.0;
         // Never below 0: a preference, not a sign. The table's terms keep
         // it above 0.4; only trims near their bound (`feedback.rs`, at
         // `n` = 2 or 3) could take a corner below 0.
-        let (hu, hv, ou, ov) = (h(p[0]), h(p[1]), 2.0 * u - 1.0, 2.0 * v - 1.0);
         let [cc, ss, cs, sc] = self.cross;
         (1.0 - self.bias[0] * hu
             - self.bias[1] * hv

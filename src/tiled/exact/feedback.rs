@@ -1,6 +1,7 @@
-//! Exact mode's edge correction trimmed row by row: the first harmonic of
-//! the in-pixel density that the rows settled so far kept, fed back into
-//! the correction's terms for the rows still to come.
+//! Exact mode's edge correction trimmed row by row: the harmonics of the
+//! in-pixel density at the pixel lattice's frequencies `(1, 0)`, `(0, 1)`
+//! and `(1, ±1)` that the rows settled so far kept, fed back into the
+//! correction's terms for the rows still to come.
 //!
 //! The calibrated rows (`calibration.rs`) leave a residual wherever they
 //! were not solved at a frame's count of points: between rows, past the
@@ -9,11 +10,11 @@
 //! shows as a pixel pattern at 10⁸ points. Each settled row's harmonic is
 //! known exactly, and the terms move it linearly, so the correction is
 //! trimmed by integral feedback: after a row of `m` points whose harmonic
-//! is `h`, each term moves by `-g·h / slope`, with `g = m / max(SPAN, 2m)`.
-//! Summing the updates, the total harmonic over every row so far is
-//! `SPAN / 2·slope` times how far the trim has moved, whatever the
-//! residual was: bounded, so its power falls as `1/N` instead of growing
-//! as `N`. The rows' own noise passes through the loop's high-pass filter
+//! is `h`, each term moves by `-g·h / slope`, with `g = m / max(span, 2m)`
+//! ([`SPANS`]). Summing the updates, the harmonic summed over every point
+//! so far (`Σ 2·cos`, …) is `span·slope` times how far the trim has moved
+//! (rows of `2m <= span`), whatever the residual was: bounded, so its power
+//! falls as `1/N` instead of growing as `N`. The rows' own noise passes through the loop's high-pass filter
 //! `(1 - z⁻¹) / (1 - (1 - g)·z⁻¹)`, whose gain is at most `2 / (2 - g)`
 //! (4/3 at the cap `g = 1/2`): nothing is amplified into a peak near the
 //! pixel frequency, and exactly at it the noise too is taken out.
@@ -126,15 +127,10 @@ impl Feedback {
         #[expect(clippy::cast_precision_loss, reason = "points in a row")]
         let m = m as f64;
         // A harmonic is `sum / m`, the gain `m / max(span, 2m)`.
-        for (k, t) in self.trim.iter_mut().enumerate() {
-            let (Some(&sum), Some(&slope), Some(&span), Some(&bound)) = (
-                sums.get(k),
-                self.slopes.get(k),
-                SPANS.get(k),
-                MAX_TRIM.get(k),
-            ) else {
-                continue;
-            };
+        let limits = SPANS.into_iter().zip(MAX_TRIM);
+        for (((t, sum), slope), (span, bound)) in
+            self.trim.iter_mut().zip(sums).zip(self.slopes).zip(limits)
+        {
             *t = (*t - sum / (slope * span.max(2.0 * m))).clamp(-bound, bound);
         }
     }
