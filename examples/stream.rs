@@ -14,7 +14,9 @@
 //! `--oversample S` and `--bias BX,BY,GY` to override the calibrated edge
 //! correction) prints the same figures for its kept points, plus the
 //! top-ups, the first harmonic of the in-pixel density (what the edge
-//! correction is calibrated on) and ρ of the measured minimum distance.
+//! correction is calibrated on), the power at the pixel lattice's other
+//! frequencies up to two cycles a pixel with the second harmonic, and ρ of
+//! the measured minimum distance.
 //! `--chart FILE` charts the trade-off against the oversampling instead:
 //!
 //! ```text
@@ -413,6 +415,21 @@ impl Stats {
         println!(
             "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b), |a|, |b| <= 2: {rest:.2} at {at:?}",
             lattice[0], lattice[1]
+        );
+        let all: Vec<String> = LATTICE
+            .iter()
+            .zip(&lattice)
+            .map(|((a, b), p)| format!("({a}, {b}) {p:.2}"))
+            .collect();
+        println!("  power at each: {}", all.join(", "));
+        // `(2, 0)` and `(0, 2)` are the third and fourth of `LATTICE`.
+        let [x2, y2] = [self.lattice[2], self.lattice[3]];
+        println!(
+            "  second harmonic of the in-pixel density (cos, sin): x {:+.6} {:+.6}, y {:+.6} {:+.6}",
+            2.0 * x2.0 / n,
+            -2.0 * x2.1 / n,
+            2.0 * y2.0 / n,
+            -2.0 * y2.1 / n
         );
     }
 

@@ -7,7 +7,7 @@
 //! frame. The table still sets the trims' starting point, the top band's
 //! `δ` (which the feedback leaves alone) and the correction at `n = 1`.
 
-use super::feedback::Feedback;
+use super::feedback::{Feedback, turn_rough, waves};
 use super::{Exact, ExactMethod};
 
 /// The edge correction `[βx, βy, γ, δ, ε]` (see [`Exact::edge_factor`]) at
@@ -203,11 +203,14 @@ impl Exact {
     /// 0.49 and 0.3, `βx`'s slope over `2/π²`. The response differs by shape:
     /// `ε`'s slope over `−2/π` gives 0.25 and 0.16, so the cross terms'
     /// slopes may be up to twice the true ones, which slows their loop but
-    /// keeps it stable.
+    /// keeps it stable. The waves' slope (how `A` moves `2·mean(cos)`) was
+    /// read from the waves' settled amplitudes against the harmonics they
+    /// cancel at `n = 4` (`docs/streaming-runs.md`, "The lattice's other
+    /// frequencies"): 0.37 for elimination, 0.13–0.16 for random dropping.
     pub(super) fn feedback(method: ExactMethod) -> Feedback {
         match method {
-            ExactMethod::Eliminate => Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49),
-            ExactMethod::Random => Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3),
+            ExactMethod::Eliminate => Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49, 0.37),
+            ExactMethod::Random => Feedback::new([0.06, 0.065, -0.095, -0.1], 0.3, 0.15),
         }
     }
 
@@ -232,7 +235,11 @@ impl Exact {
     /// `(u, v)`: `1 - βx·h(u) - βy·h(v) - γ·(2v - 1) - δ·t(v) - ε·(2u - 1)`
     /// minus the cross terms `ζcc·h(u)·h(v) + ζss·(2u - 1)·(2v - 1) +
     /// ζcs·h(u)·(2v - 1) + ζsc·(2u - 1)·h(v)` (set only by `feedback.rs`,
-    /// against the pixel lattice's diagonal frequencies), never below 0,
+    /// against the pixel lattice's diagonal frequencies) and the waves
+    /// `A·cos 2π(a·u + b·v) + B·sin 2π(a·u + b·v)` at the lattice's other
+    /// frequencies (`feedback::WAVES`, set only by the feedback; their
+    /// `cos` and `sin` from a shorter series than the feedback measures
+    /// with, as only the trims' response depends on it), never below 0,
     /// with `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
     /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
     /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
@@ -253,7 +260,8 @@ impl Exact {
         // it above 0.4; only trims near their bound (`feedback.rs`, at
         // `n` = 2 or 3) could take a corner below 0.
         let [cc, ss, cs, sc] = self.cross;
-        (1.0 - self.bias[0] * hu
+        let mut f = 1.0
+            - self.bias[0] * hu
             - self.bias[1] * hv
             - self.bias[2] * ov
             - self.top * t
@@ -261,8 +269,16 @@ impl Exact {
             - cc * hu * hv
             - ss * ou * ov
             - cs * hu * ov
-            - sc * ou * hv)
-            .max(0.0)
+            - sc * ou * hv;
+        if self.feedback.is_some() {
+            for ((c, s), [a, b]) in waves(turn_rough(u), turn_rough(v))
+                .into_iter()
+                .zip(self.waves)
+            {
+                f -= a * c + b * s;
+            }
+        }
+        f.max(0.0)
     }
 
     /// Whether [`Self::edge_factor`] can differ from 1.

@@ -112,12 +112,12 @@ pub const EXACT_ATTEMPTS: u32 = 10;
 ///
 /// They differ in what the set looks like. Elimination spreads the kept
 /// points best; random dropping adds a little white noise (a thinned
-/// Poisson disk set). With either, exactly `n` a pixel draws the points a
-/// little toward the middles of the pixel's halves at small `n` (at
-/// `n = 4` the density across a pixel ripples by about ±2.5 % at half a
-/// pixel); the edge correction and its feedback hold the pixel frequency
-/// itself and the diagonals `(1, ±1)` flat. README's streaming table has
-/// both, measured.
+/// Poisson disk set). With either, exactly `n` a pixel would draw the
+/// points a little toward the middles of the pixel's halves at small `n`
+/// (at `n = 4` the density across a pixel rippled by about ±2.5 % at half
+/// a pixel); the edge correction and its feedback hold every frequency of
+/// the pixel lattice up to two cycles a pixel flat (`(1, 0)`, `(2, 0)`,
+/// `(1, ±1)`, `(2, ±1)`, …). README's streaming table has both, measured.
 ///
 /// In renders, elimination gives the lower error, hence the default: in
 /// the tracer study (`examples/trace.rs`, `docs/trace.md`, 2026-11-24:
@@ -200,6 +200,9 @@ pub(crate) struct Exact {
     side: f64,
     /// Its cross terms `[ζcc, ζss, ζcs, ζsc]`: 0 but for the feedback.
     cross: [f64; 4],
+    /// The waves' `[cos, sin]` amplitudes (`feedback::WAVES`): 0 but for
+    /// the feedback.
+    waves: [[f64; 2]; feedback::WAVES.len()],
     /// `[βx, βy, γ, ε]` as calibrated, before the feedback's trims, and
     /// the feedback (`feedback.rs`); `None` when the caller set the
     /// correction.
@@ -324,6 +327,7 @@ impl Exact {
             top,
             side,
             cross: [0.0; 4],
+            waves: [[0.0; 2]; feedback::WAVES.len()],
             base: [bias[0], bias[1], bias[2], side],
             feedback,
             reach,
@@ -554,6 +558,7 @@ impl Exact {
             self.bias = [bx0 + bx, by0 + by, g0 + g];
             self.side = e0 + e;
             self.cross = [cc, ss, cs, sc];
+            self.waves = feedback.wave_trim();
         }
         self.strip_row = None;
         if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
