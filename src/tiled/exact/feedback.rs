@@ -131,8 +131,10 @@ pub(super) fn waves(u: (f64, f64), v: (f64, f64)) -> [(f64, f64); WAVES.len()] {
 pub(super) struct Feedback {
     slopes: [f64; TERMS],
     trim: [f64; TERMS],
-    /// How a wave's amplitude moves its own harmonic.
+    /// How a wave's amplitude moves its own harmonic; whether the waves
+    /// are trimmed at all.
     wave_slope: f64,
+    with_waves: bool,
     /// Points observed so far, up to [`WAVE_SPAN`].
     seen: f64,
     /// Each wave's `[cos, sin]` amplitude.
@@ -152,6 +154,7 @@ impl Feedback {
             slopes: [a, b, g, e, cc, ss, cs, sc],
             trim: [0.0; TERMS],
             wave_slope: wave,
+            with_waves: true,
             seen: 0.0,
             wave_trim: [[0.0; 2]; WAVES.len()],
         }
@@ -162,9 +165,18 @@ impl Feedback {
         self.trim
     }
 
-    /// The waves' `[cos, sin]` amplitudes ([`WAVES`]).
-    pub(super) fn wave_trim(&self) -> [[f64; 2]; WAVES.len()] {
-        self.wave_trim
+    /// The same feedback with the waves left out: they stay at 0 and
+    /// [`Self::wave_trim`] is `None`.
+    pub(super) fn without_waves(self) -> Self {
+        Self {
+            with_waves: false,
+            ..self
+        }
+    }
+
+    /// The waves' `[cos, sin]` amplitudes ([`WAVES`]), if trimmed.
+    pub(super) fn wave_trim(&self) -> Option<[[f64; 2]; WAVES.len()]> {
+        self.with_waves.then_some(self.wave_trim)
     }
 
     /// Takes in a settled row's final points, each as where it lies in its
@@ -181,9 +193,11 @@ impl Feedback {
         for p in points {
             let (cx, sx) = turn(p[0]);
             let (cy, sy) = turn(p[1]);
-            for (sum, (c, s)) in wave_sums.iter_mut().zip(waves((cx, sx), (cy, sy))) {
-                sum[0] += 2.0 * c;
-                sum[1] += 2.0 * s;
+            if self.with_waves {
+                for (sum, (c, s)) in wave_sums.iter_mut().zip(waves((cx, sx), (cy, sy))) {
+                    sum[0] += 2.0 * c;
+                    sum[1] += 2.0 * s;
+                }
             }
             let terms = [
                 2.0 * cx,
@@ -344,7 +358,7 @@ mod tests {
             })
             .collect();
         fb.observe(row.iter().copied());
-        let t = fb.wave_trim();
+        let t = fb.wave_trim().unwrap_or_default();
         assert!(t[0][0] > 0.1, "{t:?}");
         assert!(t.iter().flatten().skip(1).all(|a| a.abs() < 1e-6), "{t:?}");
     }
@@ -365,7 +379,7 @@ mod tests {
                 .wrapping_add(1_442_695_040_888_963_407);
             #[expect(clippy::cast_precision_loss, reason = "a test's noise")]
             let noise = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.075;
-            let h = true_slope * (fb.wave_trim()[0][0] - wanted) + noise;
+            let h = true_slope * (fb.wave_trim().unwrap_or_default()[0][0] - wanted) + noise;
             open += true_slope * -wanted + noise;
             // `2·mean(cos 4πu) = h`: a share `(1 + h/2)/2` of the points
             // at `u` = 0 or ½ (cos 1), the rest at ¼ or ¾ (-1), each

@@ -200,9 +200,9 @@ pub(crate) struct Exact {
     side: f64,
     /// Its cross terms `[ζcc, ζss, ζcs, ζsc]`: 0 but for the feedback.
     cross: [f64; 4],
-    /// The waves' `[cos, sin]` amplitudes (`feedback::WAVES`): 0 but for
-    /// the feedback.
-    waves: [[f64; 2]; feedback::WAVES.len()],
+    /// The waves' `[cos, sin]` amplitudes (`feedback::WAVES`), with a
+    /// feedback that trims them (from `n = 3` up).
+    waves: Option<[[f64; 2]; feedback::WAVES.len()]>,
     /// `[βx, βy, γ, ε]` as calibrated, before the feedback's trims, and
     /// the feedback (`feedback.rs`); `None` when the caller set the
     /// correction.
@@ -291,7 +291,7 @@ impl Exact {
     pub(crate) fn new(n: usize, method: ExactMethod, radius: f64, bias: Option<[f64; 3]>) -> Self {
         // At `n = 1` a quarter of the pixels are short and no term moves
         // the pattern (`calibration.rs`): nothing to feed back.
-        let feedback = (bias.is_none() && n >= 2).then(|| Self::feedback(method));
+        let feedback = (bias.is_none() && n >= 2).then(|| Self::feedback(method, n));
         let (bias, top, side) = Self::correction(method, n, bias);
         #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
         let r_e = (1.0 / (2.0 * 3f64.sqrt() * n as f64)).sqrt();
@@ -327,7 +327,7 @@ impl Exact {
             top,
             side,
             cross: [0.0; 4],
-            waves: [[0.0; 2]; feedback::WAVES.len()],
+            waves: feedback.as_ref().and_then(Feedback::wave_trim),
             base: [bias[0], bias[1], bias[2], side],
             feedback,
             reach,
