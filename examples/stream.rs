@@ -171,8 +171,9 @@ impl Schemes {
 
 /// The pixel lattice's frequencies `(a, b)` (cycles per pixel) measured
 /// besides `(1, 0)` and `(0, 1)`: the diagonals first, then the rest with
-/// `|a|, |b| <= 2` (one of each pair `±(a, b)`).
-const LATTICE: [(i32, i32); 10] = [
+/// `|a|, |b| <= 2` (one of each pair `±(a, b)`), then those with
+/// `|a|, |b| <= 3`, then `<= 4`.
+const LATTICE: [(i32, i32); 38] = [
     (1, 1),
     (1, -1),
     (2, 0),
@@ -183,7 +184,39 @@ const LATTICE: [(i32, i32); 10] = [
     (1, -2),
     (2, 2),
     (2, -2),
+    (3, 0),
+    (0, 3),
+    (3, 1),
+    (3, -1),
+    (1, 3),
+    (1, -3),
+    (3, 2),
+    (3, -2),
+    (2, 3),
+    (2, -3),
+    (3, 3),
+    (3, -3),
+    (4, 0),
+    (0, 4),
+    (4, 1),
+    (4, -1),
+    (1, 4),
+    (1, -4),
+    (4, 2),
+    (4, -2),
+    (2, 4),
+    (2, -4),
+    (4, 3),
+    (4, -3),
+    (3, 4),
+    (3, -4),
+    (4, 4),
+    (4, -4),
 ];
+
+/// How many of [`LATTICE`] have `|a|, |b| <= 2`, and `<= 3`.
+const LATTICE_TWO: usize = 10;
+const LATTICE_THREE: usize = 22;
 
 /// The product of two complex numbers given as `(re, im)`.
 fn mul(p: (f64, f64), q: (f64, f64)) -> (f64, f64) {
@@ -196,15 +229,10 @@ fn add(sum: &mut (f64, f64), z: (f64, f64)) {
     sum.1 += z.1;
 }
 
-/// `z^k` for `k` in `-2..=2` and `|z| = 1` (a negative power is the
-/// conjugate's).
+/// `z^k` for `|z| = 1` (a negative power is the conjugate's).
 fn power(z: (f64, f64), k: i32) -> (f64, f64) {
     let z = if k < 0 { (z.0, -z.1) } else { z };
-    match k.unsigned_abs() {
-        0 => (1.0, 0.0),
-        1 => z,
-        _ => mul(z, z),
-    }
+    (0..k.unsigned_abs()).fold((1.0, 0.0), |p, _| mul(p, z))
 }
 
 /// Side frequencies measured beside the pixel frequency: `k` = 1, 2, 4,
@@ -229,7 +257,7 @@ struct Stats {
     side: [[[(f64, f64); 2]; SIDE_STEPS]; 2],
     /// `Σ exp(-2πi·(a·x + b·y))` at the pixel lattice's other
     /// frequencies ([`LATTICE`]).
-    lattice: [(f64, f64); LATTICE.len()],
+    lattice: Vec<(f64, f64)>,
     /// The raster's size, for the phases across it.
     size: (f64, f64),
     /// Points by tenth of a pixel along x and along y.
@@ -247,6 +275,7 @@ impl Stats {
         Self {
             min_d2: f64::INFINITY,
             size: (f64::from(width), f64::from(height)),
+            lattice: vec![(0.0, 0.0); LATTICE.len()],
             previous_row: vec![Vec::new(); w],
             current_row: vec![Vec::new(); w],
             ..Self::default()
@@ -402,22 +431,28 @@ impl Stats {
             "  power beside it, k = ±1, ±2, ±4 … up to a quarter of the raster's cycles across it (mean, max): x {:.2} {:.2}, y {:.2} {:.2}",
             side[0].0, side[0].1, side[1].0, side[1].1
         );
-        let lattice = self.lattice.map(|z| self.periodogram(z));
-        let (rest, at) =
+        let lattice: Vec<f64> = self.lattice.iter().map(|&z| self.periodogram(z)).collect();
+        let largest = |range: core::ops::Range<usize>| {
             lattice
                 .iter()
                 .zip(&LATTICE)
-                .skip(2)
+                .skip(range.start)
+                .take(range.len())
                 .fold(
                     (0.0, (0, 0)),
                     |best, (&p, &ab)| if p > best.0 { (p, ab) } else { best },
-                );
+                )
+        };
+        let (two, at_two) = largest(2..LATTICE_TWO);
+        let (three, at_three) = largest(LATTICE_TWO..LATTICE_THREE);
+        let (four, at_four) = largest(LATTICE_THREE..LATTICE.len());
         println!(
-            "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b), |a|, |b| <= 2: {rest:.2} at {at:?}",
+            "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b), |a|, |b| <= 2: {two:.2} at {at_two:?}; with 3 in a or b: {three:.2} at {at_three:?}; with 4: {four:.2} at {at_four:?}",
             lattice[0], lattice[1]
         );
         let all: Vec<String> = LATTICE
             .iter()
+            .take(LATTICE_THREE)
             .zip(&lattice)
             .map(|((a, b), p)| format!("({a}, {b}) {p:.2}"))
             .collect();
