@@ -317,33 +317,42 @@ mod tests {
         Feedback::new([0.1, 0.1, -0.125, -0.16], 0.49, 0.37)
     }
 
-    /// The series matches the platform's `sin_cos` to 10⁻⁷ over the pixel.
-    #[test]
-    fn turn_is_cos_and_sin_of_the_turn() {
-        for i in 0..=10_000 {
-            let f = f64::from(i) / 10_001.0;
-            let (c, s) = turn(f);
+    /// A row's noise on its harmonic: uniform in ±0.0375, from a linear
+    /// congruential step of `state`.
+    fn noise(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        #[expect(clippy::cast_precision_loss, reason = "a test's noise")]
+        let unit = (*state >> 11) as f64 / (1u64 << 53) as f64;
+        (unit - 0.5) * 0.075
+    }
+
+    /// `series` gives `cos` and `sin` of `2π·f` to `tolerance` at `steps`
+    /// points over the pixel, against the platform's `sin_cos`.
+    fn matches_sin_cos(series: fn(f64) -> (f64, f64), steps: u32, tolerance: f64) {
+        for i in 0..=steps {
+            let f = f64::from(i) / f64::from(steps + 1);
+            let (c, s) = series(f);
             let (s0, c0) = (core::f64::consts::TAU * f).sin_cos();
             assert!(
-                (c - c0).abs() < 1e-7 && (s - s0).abs() < 1e-7,
+                (c - c0).abs() < tolerance && (s - s0).abs() < tolerance,
                 "{f}: {c} {s}"
             );
         }
+    }
+
+    /// The series matches the platform's `sin_cos` to 10⁻⁷ over the pixel.
+    #[test]
+    fn turn_is_cos_and_sin_of_the_turn() {
+        matches_sin_cos(turn, 10_000, 1e-7);
     }
 
     /// The short series stays within 10⁻⁴ of `sin_cos`, and the waves
     /// are `cos` and `sin` of `2π(a·u + b·v)`.
     #[test]
     fn the_waves_are_the_lattice_frequencies() {
-        for i in 0..=1000 {
-            let f = f64::from(i) / 1001.0;
-            let (c, s) = turn_rough(f);
-            let (s0, c0) = (core::f64::consts::TAU * f).sin_cos();
-            assert!(
-                (c - c0).abs() < 1e-4 && (s - s0).abs() < 1e-4,
-                "{f}: {c} {s}"
-            );
-        }
+        matches_sin_cos(turn_rough, 1000, 1e-4);
         for i in 0..40 {
             for j in 0..40 {
                 let (u, v) = (f64::from(i) / 40.3, f64::from(j) / 39.7);
@@ -388,11 +397,7 @@ mod tests {
         let (mut closed, mut open) = (0.0, 0.0);
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         for _ in 0..2000 {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            #[expect(clippy::cast_precision_loss, reason = "a test's noise")]
-            let noise = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.075;
+            let noise = noise(&mut state);
             let h = true_slope * (fb.wave_trim().unwrap_or_default()[0][0] - wanted) + noise;
             open += true_slope * -wanted + noise;
             // `2·mean(cos 4πu) = h`: a share `(1 + h/2)/2` of the points
@@ -449,11 +454,7 @@ mod tests {
             let trim = fb.trim();
             let mut h = [0.0; 4];
             for k in 0..4 {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                #[expect(clippy::cast_precision_loss, reason = "a test's noise")]
-                let noise = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.075;
+                let noise = noise(&mut state);
                 h[k] = true_slopes[k] * (trim[k] - wanted[k]) + noise;
                 open[k] += true_slopes[k] * -wanted[k] + noise;
             }
