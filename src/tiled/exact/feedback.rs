@@ -88,11 +88,10 @@ fn cross_slopes(c: f64) -> [f64; 4] {
 /// Not the third harmonics: at `n = 4`, 4·10⁶ points, `(3, 0)` / `(0, 3)`
 /// read 8–21 before any wave and 9–46 with these, and twelve more waves
 /// held every frequency up to `|a|, |b| <= 3` under 0.9, but cost 6–8 %
-/// of exact mode's time against about 1 % for these eight (the journal,
-/// "Exact mode's edge correction fed back row by row"). A ripple of
-/// three cycles a pixel is what a pixel's reconstruction filter takes out
-/// best; the second harmonic, at 850 there, made no difference to the
-/// tracer's errors either.
+/// of exact mode's time against 1–3 % for these eight (the journal,
+/// "Exact mode's edge correction fed back row by row", has ways to make
+/// any number of orders cheap). The second harmonic, at 850 there, made
+/// no difference to the tracer's errors (`docs/trace.md`, sixth study).
 pub(super) const WAVES: [(u32, i32); 8] = [
     (2, 0),
     (0, 2),

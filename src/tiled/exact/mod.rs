@@ -63,8 +63,10 @@
 //! - `elimination.rs` and `dropping.rs`: step 3 by each [`ExactMethod`];
 //! - `calibration.rs`: the edge correction both methods weigh points by;
 //! - `feedback.rs`: that correction trimmed after each row from the
-//!   in-pixel harmonic the rows settled so far kept, so that no residual
-//!   of the table builds up into a pixel pattern over a frame;
+//!   in-pixel harmonics the rows settled so far kept, so that no residual
+//!   of the table builds up into a pixel pattern over a frame, and waves
+//!   at the pixel lattice's frequencies up to two cycles a pixel trimmed
+//!   the same way;
 //! - `cells.rs`: the band's local grid, which elimination and top-ups
 //!   search.
 //!
