@@ -229,10 +229,27 @@ fn add(sum: &mut (f64, f64), z: (f64, f64)) {
     sum.1 += z.1;
 }
 
-/// `z^k` for `|z| = 1` (a negative power is the conjugate's).
-fn power(z: (f64, f64), k: i32) -> (f64, f64) {
-    let z = if k < 0 { (z.0, -z.1) } else { z };
-    (0..k.unsigned_abs()).fold((1.0, 0.0), |p, _| mul(p, z))
+/// The highest `|a|` or `|b|` in [`LATTICE`].
+const LATTICE_ORDER: usize = 4;
+
+/// `z^0` to `z^LATTICE_ORDER`, once a point, for every frequency of
+/// [`LATTICE`] to take its factors from ([`power`]).
+fn powers(z: (f64, f64)) -> [(f64, f64); LATTICE_ORDER + 1] {
+    let mut out = [(1.0, 0.0); LATTICE_ORDER + 1];
+    for k in 1..out.len() {
+        out[k] = mul(out[k - 1], z);
+    }
+    out
+}
+
+/// `z^k` from `z`'s [`powers`], for `|z| = 1` (a negative power is the
+/// conjugate's).
+fn power(powers: &[(f64, f64)], k: i32) -> (f64, f64) {
+    let z = powers
+        .get(k.unsigned_abs() as usize)
+        .copied()
+        .unwrap_or((1.0, 0.0));
+    if k < 0 { (z.0, -z.1) } else { z }
 }
 
 /// Side frequencies measured beside the pixel frequency: `k` = 1, 2, 4,
@@ -359,9 +376,9 @@ impl Stats {
             for (sum, z) in self.pixel_frequency.iter_mut().zip(at_pixel) {
                 add(sum, z);
             }
-            let [u, v] = at_pixel;
+            let [u, v] = at_pixel.map(powers);
             for (sum, &(a, b)) in self.lattice.iter_mut().zip(&LATTICE) {
-                add(sum, mul(power(u, a), power(v, b)));
+                add(sum, mul(power(&u, a), power(&v, b)));
             }
             // The phase across the raster along the other axis, for
             // k = 1, 2, 4, …: squared from k = 1 step by step.

@@ -11,13 +11,15 @@ impl Exact {
     /// Step 3, [`ExactMethod::Random`]: each pixel of row `y` drops its
     /// excess points uniformly at random.
     pub(super) fn drop_at_random<R: Rng + ?Sized>(&mut self, width: usize, rng: &mut R) {
+        // The correction changes only between rows (`Exact::store`).
+        let corrects = self.corrects();
         for x in 0..width {
             let (Some(&a), Some(&z)) = (self.start.get(x), self.start.get(x + 1)) else {
                 continue;
             };
             // Darts only go to short pixels, which end at n: an excess
             // pixel's live points are all among its gathered ones.
-            if self.count.get(x).is_some_and(|&c| c > self.n) && self.corrects() {
+            if corrects && self.count.get(x).is_some_and(|&c| c > self.n) {
                 let mut factors = core::mem::take(&mut self.factor);
                 factors.clear();
                 factors.extend((a..z).map(|i| self.edge_factor(i)));
@@ -26,7 +28,7 @@ impl Exact {
             while let Some(&c) = self.count.get(x)
                 && c > self.n
             {
-                if !self.corrects() {
+                if !corrects {
                     let mut k = below(rng, c);
                     for i in a..z {
                         if self.alive.get(i) == Some(&true) {
