@@ -220,8 +220,10 @@ impl TiledBuilder {
     /// density the rows so far kept, which holds the pattern at the pixel
     /// frequency and its diagonals down however large the frame (measured
     /// from `n = 3` up; at `n = 2` random dropping's trims reach their
-    /// bounds and only lower it). Setting β here replaces the table,
-    /// the other terms and the feedback, and `[0.0, 0.0, 0.0]` turns the
+    /// bounds and only lower it); from `n = 3` up, waves at the pixel
+    /// lattice's other frequencies up to two cycles a pixel are trimmed the
+    /// same way. Setting β here replaces the table, the other terms, the
+    /// waves and the feedback, and `[0.0, 0.0, 0.0]` turns the
     /// correction off. Ignored outside exact mode.
     #[must_use]
     pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {

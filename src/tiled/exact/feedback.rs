@@ -22,8 +22,9 @@
 //! ([`SPANS`]). Summing the updates, the harmonic summed over every point
 //! so far (`Σ 2·cos`, …) is `span·slope` times how far the trim has moved
 //! (rows of `2m <= span`), whatever the residual was: bounded, so its power
-//! falls as `1/N` instead of growing as `N`. The rows' own noise passes through the loop's high-pass filter
-//! `(1 - z⁻¹) / (1 - (1 - g)·z⁻¹)`, whose gain is at most `2 / (2 - g)`
+//! falls as `1/N` instead of growing as `N`. The rows' own noise passes
+//! through the loop's high-pass filter `(1 - z⁻¹) / (1 - (1 - g)·z⁻¹)`,
+//! whose gain is at most `2 / (2 - g)`
 //! (4/3 at the cap `g = 1/2`): nothing is amplified into a peak near the
 //! pixel frequency, and exactly at it the noise too is taken out.
 //!
