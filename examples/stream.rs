@@ -123,6 +123,10 @@ struct Args {
     /// Print progress every ROWS rows (0 counts as 1)
     #[arg(long, value_name = "ROWS")]
     progress: Option<u32>,
+    /// Measure the pixel lattice's frequencies (a, b) up to
+    /// max(|a|, |b|) = K
+    #[arg(long, value_name = "K", default_value_t = 4, value_parser = clap::value_parser!(u32).range(2..=16))]
+    lattice_order: u32,
 }
 
 /// Three numbers `a,b,c`, for `--bias`.
@@ -170,53 +174,35 @@ impl Schemes {
 }
 
 /// The pixel lattice's frequencies `(a, b)` (cycles per pixel) measured
-/// besides `(1, 0)` and `(0, 1)`: the diagonals first, then the rest with
-/// `|a|, |b| <= 2` (one of each pair `±(a, b)`), then those with
-/// `|a|, |b| <= 3`, then `<= 4`.
-const LATTICE: [(i32, i32); 38] = [
-    (1, 1),
-    (1, -1),
-    (2, 0),
-    (0, 2),
-    (2, 1),
-    (2, -1),
-    (1, 2),
-    (1, -2),
-    (2, 2),
-    (2, -2),
-    (3, 0),
-    (0, 3),
-    (3, 1),
-    (3, -1),
-    (1, 3),
-    (1, -3),
-    (3, 2),
-    (3, -2),
-    (2, 3),
-    (2, -3),
-    (3, 3),
-    (3, -3),
-    (4, 0),
-    (0, 4),
-    (4, 1),
-    (4, -1),
-    (1, 4),
-    (1, -4),
-    (4, 2),
-    (4, -2),
-    (2, 4),
-    (2, -4),
-    (4, 3),
-    (4, -3),
-    (3, 4),
-    (3, -4),
-    (4, 4),
-    (4, -4),
-];
+/// besides `(1, 0)` and `(0, 1)`, one of each pair `±(a, b)`, order by
+/// order (the order being `max(|a|, |b|)`): the diagonals `(1, ±1)`
+/// first, then `(2, 0)`, `(0, 2)`, `(2, ±1)`, `(1, ±2)`, `(2, ±2)`, and so
+/// on up to `order`.
+fn lattice(order: usize) -> Vec<(i32, i32)> {
+    let mut out = Vec::new();
+    for o in 1..=order {
+        #[expect(
+            clippy::cast_possible_wrap,
+            clippy::cast_possible_truncation,
+            reason = "order <= 16"
+        )]
+        let o = o as i32;
+        out.extend(if o > 1 { vec![(o, 0), (0, o)] } else { vec![] });
+        for m in 1..o {
+            out.extend([(o, m), (o, -m), (m, o), (m, -o)]);
+        }
+        out.extend([(o, o), (o, -o)]);
+    }
+    out
+}
 
-/// How many of [`LATTICE`] have `|a|, |b| <= 2`, and `<= 3`.
-const LATTICE_TWO: usize = 10;
-const LATTICE_THREE: usize = 22;
+/// How many of [`lattice`]'s frequencies have an order up to `order`.
+fn lattice_len(order: usize) -> usize {
+    (2 * order + 1) * (2 * order + 1) / 2 - 2
+}
+
+/// The highest order `--lattice-order` takes.
+const MAX_LATTICE_ORDER: usize = 16;
 
 /// The product of two complex numbers given as `(re, im)`.
 fn mul(p: (f64, f64), q: (f64, f64)) -> (f64, f64) {
@@ -229,14 +215,11 @@ fn add(sum: &mut (f64, f64), z: (f64, f64)) {
     sum.1 += z.1;
 }
 
-/// The highest `|a|` or `|b|` in [`LATTICE`].
-const LATTICE_ORDER: usize = 4;
-
-/// `z^0` to `z^LATTICE_ORDER`, once a point, for every frequency of
-/// [`LATTICE`] to take its factors from ([`power`]).
-fn powers(z: (f64, f64)) -> [(f64, f64); LATTICE_ORDER + 1] {
-    let mut out = [(1.0, 0.0); LATTICE_ORDER + 1];
-    for k in 1..out.len() {
+/// `z^0` to `z^order`, once a point, for every frequency of [`lattice`]
+/// to take its factors from ([`power`]).
+fn powers(z: (f64, f64), order: usize) -> [(f64, f64); MAX_LATTICE_ORDER + 1] {
+    let mut out = [(1.0, 0.0); MAX_LATTICE_ORDER + 1];
+    for k in 1..=order.min(MAX_LATTICE_ORDER) {
         out[k] = mul(out[k - 1], z);
     }
     out
@@ -272,8 +255,10 @@ struct Stats {
     /// values of `k`, each sign) and `Σ exp(-2πi·(y ± k·x/W))` (the
     /// second), where a pattern that drifts across the raster would show.
     side: [[[(f64, f64); 2]; SIDE_STEPS]; 2],
-    /// `Σ exp(-2πi·(a·x + b·y))` at the pixel lattice's other
-    /// frequencies ([`LATTICE`]).
+    /// The pixel lattice's other frequencies measured ([`lattice`]), up
+    /// to `order`, and `Σ exp(-2πi·(a·x + b·y))` at each.
+    order: usize,
+    frequencies: Vec<(i32, i32)>,
     lattice: Vec<(f64, f64)>,
     /// The raster's size, for the phases across it.
     size: (f64, f64),
@@ -287,12 +272,15 @@ struct Stats {
 }
 
 impl Stats {
-    fn new(width: u32, height: u32) -> Self {
+    fn new(width: u32, height: u32, order: usize) -> Self {
         let w = width as usize;
+        let frequencies = lattice(order);
         Self {
+            order,
+            lattice: vec![(0.0, 0.0); frequencies.len()],
+            frequencies,
             min_d2: f64::INFINITY,
             size: (f64::from(width), f64::from(height)),
-            lattice: vec![(0.0, 0.0); LATTICE.len()],
             previous_row: vec![Vec::new(); w],
             current_row: vec![Vec::new(); w],
             ..Self::default()
@@ -376,8 +364,8 @@ impl Stats {
             for (sum, z) in self.pixel_frequency.iter_mut().zip(at_pixel) {
                 add(sum, z);
             }
-            let [u, v] = at_pixel.map(powers);
-            for (sum, &(a, b)) in self.lattice.iter_mut().zip(&LATTICE) {
+            let [u, v] = at_pixel.map(|z| powers(z, self.order));
+            for (sum, &(a, b)) in self.lattice.iter_mut().zip(&self.frequencies) {
                 add(sum, mul(power(&u, a), power(&v, b)));
             }
             // The phase across the raster along the other axis, for
@@ -452,7 +440,7 @@ impl Stats {
         let largest = |range: core::ops::Range<usize>| {
             lattice
                 .iter()
-                .zip(&LATTICE)
+                .zip(&self.frequencies)
                 .skip(range.start)
                 .take(range.len())
                 .fold(
@@ -460,22 +448,30 @@ impl Stats {
                     |best, (&p, &ab)| if p > best.0 { (p, ab) } else { best },
                 )
         };
-        let (two, at_two) = largest(2..LATTICE_TWO);
-        let (three, at_three) = largest(LATTICE_TWO..LATTICE_THREE);
-        let (four, at_four) = largest(LATTICE_THREE..LATTICE.len());
+        let by_order: Vec<String> = (2..=self.order)
+            .map(|o| {
+                let (p, at) = largest(lattice_len(o - 1).max(2)..lattice_len(o));
+                format!("{o}: {p:.2} at {at:?}")
+            })
+            .collect();
         println!(
-            "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b), |a|, |b| <= 2: {two:.2} at {at_two:?}; with 3 in a or b: {three:.2} at {at_three:?}; with 4: {four:.2} at {at_four:?}",
-            lattice[0], lattice[1]
+            "  power at the lattice's diagonal frequencies (1, 1) and (1, -1): {:.2}, {:.2}; the largest at (a, b) by order max(|a|, |b|): {}",
+            lattice.first().copied().unwrap_or(0.0),
+            lattice.get(1).copied().unwrap_or(0.0),
+            by_order.join("; ")
         );
-        let all: Vec<String> = LATTICE
+        let all: Vec<String> = self
+            .frequencies
             .iter()
-            .take(LATTICE_THREE)
+            .take(lattice_len(self.order.min(3)))
             .zip(&lattice)
             .map(|((a, b), p)| format!("({a}, {b}) {p:.2}"))
             .collect();
-        println!("  power at each: {}", all.join(", "));
-        // `(2, 0)` and `(0, 2)` are the third and fourth of `LATTICE`.
-        let [x2, y2] = [self.lattice[2], self.lattice[3]];
+        println!("  power at each up to order 3: {}", all.join(", "));
+        // `(2, 0)` and `(0, 2)` are the third and fourth of [`lattice`].
+        let (Some(&x2), Some(&y2)) = (self.lattice.get(2), self.lattice.get(3)) else {
+            return;
+        };
         println!(
             "  second harmonic of the in-pixel density (cos, sin): x {:+.6} {:+.6}, y {:+.6} {:+.6}",
             2.0 * x2.0 / n,
@@ -805,7 +801,7 @@ fn main() -> ExitCode {
         else {
             continue;
         };
-        let mut stats = Stats::new(width, height);
+        let mut stats = Stats::new(width, height, args.lattice_order as usize);
         let mut buf = Vec::new();
         let start = Instant::now();
         let cpu_start = common::thread_cpu_seconds();

@@ -57,7 +57,7 @@ const VARIANTS: [Variant; 4] = [
 fn run(builder: TiledBuilder, width: u32, seed: u64) -> Result<(Tiled, Stats, f64), String> {
     let tiled = builder.build().map_err(|e| e.to_string())?;
     let (_, _, seconds) = timed_pass(&tiled, seed);
-    let mut stats = Stats::new(width, tiled.height());
+    let mut stats = Stats::new(width, tiled.height(), 2);
     let mut buf = Vec::new();
     let mut stream = tiled.pixels_seeded(seed);
     while let Some((x, y)) = stream.next_into(&mut buf) {
