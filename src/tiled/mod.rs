@@ -221,8 +221,8 @@ impl TiledBuilder {
     /// frequency and its diagonals down however large the frame (measured
     /// from `n = 3` up; at `n = 2` random dropping's trims reach their
     /// bounds and only lower it); from `n = 3` up, waves at the pixel
-    /// lattice's other frequencies up to two cycles a pixel are trimmed the
-    /// same way. Setting β here replaces the table, the other terms, the
+    /// lattice's other frequencies (every one up to four cycles a pixel,
+    /// and up to twelve along the axes) are trimmed the same way. Setting β here replaces the table, the other terms, the
     /// waves and the feedback, and `[0.0, 0.0, 0.0]` turns the
     /// correction off. Ignored outside exact mode.
     #[must_use]

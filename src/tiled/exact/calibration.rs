@@ -7,7 +7,8 @@
 //! frame. The table still sets the trims' starting point, the top band's
 //! `δ` (which the feedback leaves alone) and the correction at `n = 1`.
 
-use super::feedback::{Feedback, turn_rough, waves};
+use super::feedback::Feedback;
+use super::waves::Waves;
 use super::{Exact, ExactMethod};
 
 /// The edge correction `[βx, βy, γ, δ, ε]` (see [`Exact::edge_factor`]) at
@@ -253,9 +254,9 @@ impl Exact {
     /// ζcs·h(u)·(2v - 1) + ζsc·(2u - 1)·h(v)` (set only by `feedback.rs`,
     /// against the pixel lattice's diagonal frequencies) and the waves
     /// `A·cos 2π(a·u + b·v) + B·sin 2π(a·u + b·v)` at the lattice's other
-    /// frequencies (`feedback::WAVES`, set only by the feedback; their
-    /// `cos` and `sin` from a shorter series than the feedback measures
-    /// with, as only the trims' response depends on it), never below 0,
+    /// frequencies (`waves.rs`, set only by the feedback; their sum read
+    /// from a table, as only the trims' response depends on its
+    /// precision), never below 0,
     /// with `h(t) = (2t - 1)² - 1/3` (mean 0 over the pixel, 2/3 at its edges,
     /// -1/3 at its centre) and `t(v) = max(0, 1 - v/w) - w/2` (mean 0, a
     /// ramp over the top band `v < w`, `w =` [`TOP_BAND`]); so positive β
@@ -286,15 +287,15 @@ impl Exact {
             - ss * ou * ov
             - cs * hu * ov
             - sc * ou * hv;
-        if let Some(amplitudes) = self.waves {
-            for ((c, s), [a, b]) in waves(turn_rough(u), turn_rough(v))
-                .into_iter()
-                .zip(amplitudes)
-            {
-                f -= a * c + b * s;
-            }
+        if let Some(waves) = self.waves() {
+            f -= waves.sum_at(u, v);
         }
         f.max(0.0)
+    }
+
+    /// The waves the feedback trims, if any (`waves.rs`).
+    fn waves(&self) -> Option<&Waves> {
+        self.feedback.as_ref().and_then(Feedback::waves)
     }
 
     /// Whether [`Self::edge_factor`] can differ from 1.
@@ -303,9 +304,7 @@ impl Exact {
             || self.top != 0.0
             || self.side != 0.0
             || self.cross != [0.0; 4]
-            || self
-                .waves
-                .is_some_and(|w| w.iter().flatten().any(|&a| a != 0.0))
+            || self.waves().is_some_and(Waves::active)
     }
 }
 

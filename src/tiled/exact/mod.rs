@@ -64,9 +64,10 @@
 //! - `calibration.rs`: the edge correction both methods weigh points by;
 //! - `feedback.rs`: that correction trimmed after each row from the
 //!   in-pixel harmonics the rows settled so far kept, so that no residual
-//!   of the table builds up into a pixel pattern over a frame, and waves
-//!   at the pixel lattice's frequencies up to two cycles a pixel trimmed
-//!   the same way;
+//!   of the table builds up into a pixel pattern over a frame;
+//! - `waves.rs`: the correction's waves at the pixel lattice's higher
+//!   frequencies, trimmed the same way, measured from a histogram of the
+//!   points in their pixels and read from a table;
 //! - `cells.rs`: the band's local grid, which elimination and top-ups
 //!   search.
 //!
@@ -79,6 +80,8 @@ mod dropping;
 mod elimination;
 mod feedback;
 mod mend;
+mod turn;
+mod waves;
 
 use super::window::Window;
 use crate::vector::distance_squared;
@@ -202,9 +205,6 @@ pub(crate) struct Exact {
     side: f64,
     /// Its cross terms `[ζcc, ζss, ζcs, ζsc]`: 0 but for the feedback.
     cross: [f64; 4],
-    /// The waves' `[cos, sin]` amplitudes (`feedback::WAVES`), with a
-    /// feedback that trims them (from `n = 3` up).
-    waves: Option<[[f64; 2]; feedback::WAVES.len()]>,
     /// `[βx, βy, γ, ε]` as calibrated, before the feedback's trims, and
     /// the feedback (`feedback.rs`); `None` when the caller set the
     /// correction.
@@ -329,7 +329,6 @@ impl Exact {
             top,
             side,
             cross: [0.0; 4],
-            waves: feedback.as_ref().and_then(Feedback::wave_trim),
             base: [bias[0], bias[1], bias[2], side],
             feedback,
             reach,
@@ -560,7 +559,6 @@ impl Exact {
             self.bias = [bx0 + bx, by0 + by, g0 + g];
             self.side = e0 + e;
             self.cross = [cc, ss, cs, sc];
-            self.waves = feedback.wave_trim();
         }
         self.strip_row = None;
         if self.method == ExactMethod::Eliminate && self.rows_up == 1 {
