@@ -53,9 +53,10 @@ const BAND: usize = 2;
 const AXIS: usize = 12;
 
 /// Points taken in between two updates of the amplitudes (and of the
-/// table): about two rows at 1024 pixels wide and `n = 4`. An update costs
-/// about as much as 50 points' worth of correction.
-const BATCH: u32 = 8192;
+/// table): about two rows at 1024 pixels wide and `n = 4`. An update's
+/// sums and table take about 5·10⁵ floating-point operations, some 60 a
+/// point of the batch, whatever the raster's width.
+const BATCH: u64 = 8192;
 
 /// The span of the trims' steps, as `feedback.rs`'s axis terms: a batch
 /// of `m` points moves an amplitude by `m / span` of what zeroes its
@@ -126,10 +127,9 @@ pub(super) struct Waves {
     centres: Vec<Complex>,
     corners: Vec<Complex>,
     /// Points by bin, `[j·BINS + i]` for `u` in bin `i` and `v` in bin `j`
-    /// (in `f64`, exact to 2⁵³),
-    /// and how many since the last update.
+    /// (in `f64`, exact to 2⁵³), and how many since the last update.
     counts: Vec<f64>,
-    pending: u32,
+    pending: u64,
     /// Points taken in so far, up to [`SPAN`].
     seen: f64,
     /// `A - iB` at `(a, b)`, `[a·(2·AXIS + 1) + b + AXIS]`, 0 where
@@ -194,7 +194,8 @@ impl Waves {
         if self.pending < BATCH {
             return;
         }
-        let m = f64::from(self.pending);
+        #[expect(clippy::cast_precision_loss, reason = "points in a batch")]
+        let m = self.pending as f64;
         self.seen = (self.seen + m).min(SPAN);
         let step = self.slope * self.seen.max(2.0 * m);
         let harmonics = self.harmonics();
@@ -206,11 +207,11 @@ impl Waves {
             // `sum` is `Σ e^{-2πi(a·u + b·v)}`: `Σ cos` and `-Σ sin`. The
             // harmonics are `2·Σ cos / m` and `2·Σ sin / m`; `A - iB` moves
             // against them.
-            let a = (amplitude.0 - 2.0 * sum.0 / step).clamp(-MAX_TRIM, MAX_TRIM);
-            let minus_b = (amplitude.1 - 2.0 * sum.1 / step).clamp(-MAX_TRIM, MAX_TRIM);
-            *amplitude = (a, minus_b);
+            let c = (amplitude.0 - 2.0 * sum.0 / step).clamp(-MAX_TRIM, MAX_TRIM);
+            let minus_s = (amplitude.1 - 2.0 * sum.1 / step).clamp(-MAX_TRIM, MAX_TRIM);
+            *amplitude = (c, minus_s);
         }
-        self.active = self.amplitude.iter().any(|&(a, b)| a != 0.0 || b != 0.0);
+        self.active = self.amplitude.iter().any(|&(c, s)| c != 0.0 || s != 0.0);
         self.counts.iter_mut().for_each(|c| *c = 0.0);
         self.pending = 0;
         self.tabulate();
@@ -417,7 +418,7 @@ mod tests {
             }
             // Half a batch changes nothing yet.
             waves.settle();
-            assert!(BINS * (BINS + 4) < BATCH as usize);
+            assert!(((BINS * (BINS + 4)) as u64) < BATCH);
             assert_eq!(waves.active(), round == 1);
         }
         assert!(waves.active());
