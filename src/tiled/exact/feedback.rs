@@ -166,7 +166,7 @@ impl Feedback {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::Feedback;
 
     /// Elimination's slopes (`calibration.rs`).
@@ -175,8 +175,8 @@ mod tests {
     }
 
     /// A row's noise on its harmonic: uniform in ±0.0375, from a linear
-    /// congruential step of `state`.
-    fn noise(state: &mut u64) -> f64 {
+    /// congruential step of `state` (the waves' loop test uses it too).
+    pub(in crate::tiled::exact) fn noise(state: &mut u64) -> f64 {
         *state = state
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);

@@ -82,13 +82,6 @@ pub(super) fn is_wave(a: usize, b: isize) -> bool {
     half && !first && (square || band)
 }
 
-/// Whether any wave has this `a`.
-fn has_waves(a: usize) -> bool {
-    #[expect(clippy::cast_possible_wrap, reason = "AXIS is small")]
-    let axis = AXIS as isize;
-    (-axis..=axis).any(|b| is_wave(a, b))
-}
-
 /// The `(a, b)` at `index` of the amplitudes' layout, `a·(2·AXIS + 1) + b +
 /// AXIS`.
 fn wave_at(index: usize) -> (usize, isize) {
@@ -236,10 +229,11 @@ impl Waves {
     /// centre, laid out as [`Self::amplitude`] (0 where no wave is).
     fn harmonics(&self) -> Vec<Complex> {
         let width = 2 * AXIS + 1;
-        // `rows[a][j] = Σ_i counts[j][i]·e^{-2πi·a·u_i}`, for the `a` some
-        // wave has; then each wave's sum over `j`.
+        // `rows[a][j] = Σ_i counts[j][i]·e^{-2πi·a·u_i}` (every `a` up to
+        // `AXIS` has a wave: `(a, 0)`, or `(1, 2)`, or `(0, b)`); then each
+        // wave's sum over `j`.
         let mut rows = vec![(0.0, 0.0); (AXIS + 1) * BINS];
-        for a in (0..=AXIS).filter(|&a| has_waves(a)) {
+        for a in 0..=AXIS {
             let phases = self
                 .centres
                 .get(a * BINS..(a + 1) * BINS)
@@ -250,15 +244,10 @@ impl Waves {
                 // one the compiler can keep in vector registers.
                 let (mut re, mut im) = ([0.0; 8], [0.0; 8]);
                 for (c, z) in line.chunks_exact(8).zip(phases.chunks_exact(8)) {
-                    for k in 0..8 {
-                        let (c, z) = (
-                            c.get(k).copied().unwrap_or(0.0),
-                            z.get(k).copied().unwrap_or_default(),
-                        );
-                        if let (Some(r), Some(m)) = (re.get_mut(k), im.get_mut(k)) {
-                            *r += c * z.0;
-                            *m -= c * z.1;
-                        }
+                    let lanes = re.iter_mut().zip(im.iter_mut());
+                    for ((r, m), (&c, &z)) in lanes.zip(c.iter().zip(z)) {
+                        *r += c * z.0;
+                        *m -= c * z.1;
                     }
                 }
                 *slot = (re.iter().sum(), im.iter().sum());
@@ -283,7 +272,7 @@ impl Waves {
     fn tabulate(&mut self) {
         let width = 2 * AXIS + 1;
         let mut p = vec![(0.0, 0.0); (AXIS + 1) * (BINS + 1)];
-        for a in (0..=AXIS).filter(|&a| has_waves(a)) {
+        for a in 0..=AXIS {
             let amplitudes = self
                 .amplitude
                 .get(a * width..(a + 1) * width)
@@ -305,7 +294,7 @@ impl Waves {
         }
         let mut table = core::mem::take(&mut self.table);
         table.iter_mut().for_each(|t| *t = 0.0);
-        for a in (0..=AXIS).filter(|&a| has_waves(a)) {
+        for a in 0..=AXIS {
             let phases = self
                 .corners
                 .get(a * (BINS + 1)..(a + 1) * (BINS + 1))
@@ -363,7 +352,7 @@ fn add(p: Complex, q: Complex) -> Complex {
 #[cfg(test)]
 mod tests {
     use super::{AXIS, BAND, BATCH, BINS, SQUARE, Waves, is_wave};
-    use crate::tiled::exact::feedback::Feedback;
+    use crate::tiled::exact::feedback::{Feedback, tests::noise};
 
     /// The waves are one of each pair `±(a, b)` over the square of order
     /// [`SQUARE`] and near the axes up to [`AXIS`], but the first
@@ -390,6 +379,10 @@ mod tests {
             assert!(waves.contains(&kept), "{kept:?}");
         }
         assert!(waves.contains(&(AXIS, 0)) && waves.contains(&(0, axis)));
+        // The sums and the table run over every `a` up to `AXIS`.
+        for a in 0..=AXIS {
+            assert!(waves.iter().any(|&(x, _)| x == a), "{a}");
+        }
         for left in [(5, 3), (3, -5), (AXIS + 1, 0), (0, axis + 1), (5, 5)] {
             assert!(!waves.contains(&left), "{left:?}");
         }
@@ -475,11 +468,7 @@ mod tests {
                 .map_or(0.0, |(_, [c, _])| c)
         };
         for _ in 0..2000 {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            #[expect(clippy::cast_precision_loss, reason = "a test's noise")]
-            let noise = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 0.075;
+            let noise = noise(&mut state);
             let h = true_slope * (cos_amplitude(&fb) - wanted) + noise;
             open += true_slope * -wanted + noise;
             // `2·mean(cos 4πu) = h`: a share `(1 + h/2)/2` of the points
