@@ -673,7 +673,7 @@ pub struct Iter<const N: usize, R, G = Everywhere> {
     /// Why the stream ended early, if it did.
     error: Option<Error>,
     started: bool,
-    ahead: OffsetBatch<N>,
+    ahead: OffsetBatch<N, true>,
     /// The indices of the next two picks, drawn ahead (see
     /// [`State::grow_cached`]).
     next_pick: [Option<usize>; 2],
@@ -889,7 +889,7 @@ struct State<'a, const N: usize, R, G> {
     candidates: &'a CandidateSampler<N>,
     radius_squared: f64,
     attempts: u32,
-    ahead: &'a mut OffsetBatch<N>,
+    ahead: &'a mut OffsetBatch<N, true>,
     next_pick: &'a mut [Option<usize>; 2],
     budget: u64,
     made: u64,

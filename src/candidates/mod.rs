@@ -175,13 +175,13 @@ impl<const N: usize> CandidateSampler<N> {
         self.volume_radius_from(cube_entry(bits), cube_step(bits))
     }
 
-    /// [`Self::volume_radius`] for [`AHEAD`] draws, step by step over all of
+    /// [`Self::volume_radius`] for `L` draws, step by step over all of
     /// them (the look-ups, then the arithmetic), bit for bit the same.
     #[inline(always)]
-    fn volume_radii(&self, bits: &[u32; AHEAD]) -> [f64; AHEAD] {
-        let entries = bits.map(cube_entry);
-        let steps = bits.map(cube_step);
-        let mut rho = [0.0; AHEAD];
+    fn volume_radii<const L: usize>(&self, bits: &[u32; L]) -> [f64; L] {
+        let entries = lanes(bits, cube_entry);
+        let steps = lanes(bits, cube_step);
+        let mut rho = [0.0; L];
         for ((rho, &entry), &d) in rho.iter_mut().zip(&entries).zip(&steps) {
             *rho = self.volume_radius_from(entry, d);
         }
@@ -195,40 +195,61 @@ impl<const N: usize> CandidateSampler<N> {
         self.radius * cube_root_near(root, step * scale)
     }
 
-    /// [`AHEAD`] offsets of [`Self::direct_annulus`], bit for bit: the
+    /// `L` offsets of [`Self::direct_annulus`], bit for bit: the
     /// generator words are drawn first, in the same order, then each step
     /// runs over all offsets at once, which the compiler turns into vector
     /// instructions (the arithmetic per offset is the same, so are the
     /// results).
     #[inline(always)]
-    fn fill_direct_annulus<R: Rng + ?Sized>(&self, rng: &mut R, out: &mut [[f64; N]; AHEAD]) {
+    fn fill_direct_annulus<R: Rng + ?Sized, const L: usize>(
+        &self,
+        rng: &mut R,
+        out: &mut [[f64; N]; L],
+    ) {
         #[expect(
             clippy::cast_possible_truncation,
             reason = "splitting words into their 32-bit halves"
         )]
         if N == 2 {
-            let words: [u64; AHEAD] = core::array::from_fn(|_| rng.next_u64());
-            let rho = words.map(|x| self.area_radius((x >> 32) as u32));
-            let (c, s) = angle_directions(&words.map(|x| x as u32));
+            let mut words = [0u64; L];
+            for w in &mut words {
+                *w = rng.next_u64();
+            }
+            let rho = lanes(&words, |x| self.area_radius((x >> 32) as u32));
+            let (c, s) = angle_directions(&lanes(&words, |x| x as u32));
             for (((d, &rho), &c), &s) in out.iter_mut().zip(&rho).zip(&c).zip(&s) {
                 place_2d(d, rho, c, s);
             }
         } else {
-            let mut x = [0u64; AHEAD];
-            let mut w = [0u64; AHEAD];
+            let mut x = [0u64; L];
+            let mut w = [0u64; L];
             for (x, w) in x.iter_mut().zip(&mut w) {
                 *x = rng.next_u64();
                 *w = rng.next_u64();
             }
-            let rho = self.volume_radii(&x.map(|x| (x >> 32) as u32));
-            let z = x.map(|x| height(x as u32));
-            let (c, s) = angle_directions(&w.map(|w| (w >> 32) as u32));
+            let rho = self.volume_radii(&lanes(&x, |x| (x >> 32) as u32));
+            let z = lanes(&x, |x| height(x as u32));
+            let (c, s) = angle_directions(&lanes(&w, |w| (w >> 32) as u32));
             let lanes = rho.iter().zip(&z).zip(c.iter().zip(&s));
             for (d, ((&rho, &z), (&c, &s))) in out.iter_mut().zip(lanes) {
                 place_3d(d, rho, z, c, s);
             }
         }
     }
+}
+
+/// `f` applied to each lane, as a plain loop: `array::map` was left out of
+/// line at 16 lanes (12 % of a 2-D run's samples in `try_map`).
+#[inline(always)]
+pub(super) fn lanes<T: Copy, U: Copy + Default, const L: usize>(
+    x: &[T; L],
+    f: impl Fn(T) -> U,
+) -> [U; L] {
+    let mut out = [U::default(); L];
+    for (o, &x) in out.iter_mut().zip(x) {
+        *o = f(x);
+    }
+    out
 }
 
 /// A height uniform in `[-1, 1)` from 32 bits read as a signed integer.
@@ -257,55 +278,83 @@ fn place_3d<const N: usize>(d: &mut [f64; N], rho: f64, z: f64, c: f64, s: f64) 
     }
 }
 
-/// Offsets drawn [`AHEAD`] at a time. Each offset is a chain of some 20
-/// dependent operations (generator, polynomial, square root, products);
-/// drawn one by one after the previous attempt's checks and branches, that
-/// chain is the critical path, while [`AHEAD`] independent chains overlap.
-/// An annulus offset does not depend on its active point, so offsets left
-/// over at the end of a pick serve the next one: the offsets used are the
-/// generator's draws in order, and only the interleaving with the pick
-/// draws differs from drawing them one by one.
+/// Offsets drawn [`AHEAD`] (or [`WIDE`]) at a time. Each offset is a chain
+/// of some 20 dependent operations (generator, polynomial, square root,
+/// products); drawn one by one after the previous attempt's checks and
+/// branches, that chain is the critical path, while the batch's
+/// independent chains overlap. An annulus offset does not depend on its
+/// active point, so offsets left over at the end of a pick serve the next
+/// one: the offsets used are the generator's draws in order, and only the
+/// interleaving with the pick draws differs from drawing them one by one.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct OffsetBatch<const N: usize> {
-    offsets: [[f64; N]; AHEAD],
+pub(crate) struct OffsetBatch<const N: usize, const WIDE_IF_DIRECT: bool = false> {
+    offsets: [[f64; N]; WIDE],
     /// The same offsets in units of `r`, as `f32`: the quick cache check's
     /// candidate position relative to the active point (see
-    /// `ConflictCache::block_relative`), computed here eight at a time.
-    units: [[f32; N]; AHEAD],
+    /// `ConflictCache::block_relative`), computed here a batch at a time.
+    units: [[f32; N]; WIDE],
     used: usize,
     /// In odd dimensions from 5-D up, the tries kept and not yet used.
     queue: shell::Queue<N>,
 }
 
-/// How many offsets [`OffsetBatch`] draws at once.
+/// Offsets a batch draws at once by default: eight lanes to each vector
+/// step.
 const AHEAD: usize = 8;
 
-impl<const N: usize> OffsetBatch<N> {
+/// Offsets a wide batch draws at once (`WIDE_IF_DIRECT`: the batch
+/// sampler in 2-D and 3-D), and the room every batch has: 32 × `N`
+/// coordinates and their `f32` copies, 24 KiB at the largest `N` that
+/// reads ahead (63), where eight would do; the type cannot size itself by
+/// `N` on stable Rust. On an AMD EPYC host (2026-11-29) 1 M points
+/// took 10 % less time in 3-D and 3 % less in 2-D with 32 than with 8:
+/// four times the independent chains in one vector loop
+/// (`docs/performance-journal.md`, "Offsets drawn 8 ahead"). The same 32
+/// drawn as four fills of 8 gained next to nothing in 3-D, so the width of
+/// the loop is what pays, not fewer refills.
+const WIDE: usize = 32;
+
+impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> {
+    /// Offsets a refill draws: [`WIDE`] where `WIDE_IF_DIRECT` (the batch
+    /// sampler's) and the annulus is drawn directly (2-D and 3-D),
+    /// [`AHEAD`] otherwise (the streaming sweep, the varying radius, every
+    /// other dimension).
+    const LEN: usize = if WIDE_IF_DIRECT && (N == 2 || N == 3) {
+        WIDE
+    } else {
+        AHEAD
+    };
+
     pub(crate) const fn new() -> Self {
         Self {
-            offsets: [[0.0; N]; AHEAD],
-            units: [[0.0; N]; AHEAD],
-            used: AHEAD,
+            offsets: [[0.0; N]; WIDE],
+            units: [[0.0; N]; WIDE],
+            used: Self::LEN,
             queue: shell::Queue::new(),
         }
     }
 
-    /// The next offset, and the same in units of `r` as `f32`, drawing
-    /// [`AHEAD`] more when all are used.
+    /// The next offset, and the same in units of `r` as `f32`, drawing a
+    /// batch more when all are used.
     #[inline(always)]
     pub(crate) fn next<R: Rng + ?Sized>(
         &mut self,
         sampler: &CandidateSampler<N>,
         rng: &mut R,
     ) -> ([f64; N], [f32; N]) {
-        if self.used >= AHEAD {
-            if N <= 3 {
+        if self.used >= Self::LEN {
+            if Self::LEN == WIDE {
+                // 2-D or 3-D, by `LEN`.
                 sampler.fill_direct_annulus(rng, &mut self.offsets);
-            } else {
-                self.queue.fill(rng, sampler.radius, &mut self.offsets);
+            } else if let Some(fill) = self.offsets.as_chunks_mut::<AHEAD>().0.first_mut() {
+                if N <= 3 {
+                    sampler.fill_direct_annulus(rng, fill);
+                } else {
+                    self.queue.fill(rng, sampler.radius, fill);
+                }
             }
             let inv_radius = 1.0 / sampler.radius;
-            for (unit, offset) in self.units.iter_mut().zip(&self.offsets) {
+            for (unit, offset) in self.units.iter_mut().zip(&self.offsets).take(Self::LEN) {
                 for (u, &o) in unit.iter_mut().zip(offset) {
                     #[expect(
                         clippy::cast_possible_truncation,
@@ -553,9 +602,13 @@ mod tests {
     #[test]
     fn drawn_ahead_equals_drawn_one_by_one() {
         fn check<const N: usize>(radius: f64) {
+            check_lanes::<N, AHEAD>(radius);
+            check_lanes::<N, WIDE>(radius);
+        }
+        fn check_lanes<const N: usize, const L: usize>(radius: f64) {
             let sampler = CandidateSampler::<N>::new(Candidates::Annulus, radius, 30);
             let (mut one, mut all) = (seeded_rng(9), seeded_rng(9));
-            let mut ahead = [[0.0; N]; AHEAD];
+            let mut ahead = [[0.0; N]; L];
             for _ in 0..100 {
                 sampler.fill_direct_annulus(&mut all, &mut ahead);
                 for got in ahead {
