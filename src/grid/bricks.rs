@@ -1,9 +1,8 @@
 //! The dense grid in bricks, with the points stored in their brick (3-D).
 //!
 //! The same cells as [`super::dense::Dense`] (side `<= r/√N`, at most one
-//! point each, padded by the reach, ghosts across periodic faces), the
-//! same nearest-first part stencils and the same two-pass seed, in another
-//! layout. In 3-D at a million points the sampler waits on memory: a pick's
+//! point each, padded by the reach, ghosts across periodic faces) and the
+//! same part stencils, in another layout. In 3-D at a million points the sampler waits on memory: a pick's
 //! 5×5×5 neighbourhood is 25 rows of `u32` indices in 25 to 35 cache lines,
 //! and each occupied cell then sends it to a point somewhere in a vector of
 //! 24 MB, a second miss that cannot start before the first ends. Here
@@ -12,13 +11,22 @@
 //!   slot in its brick (0 when empty), so a brick's cells are one cache line
 //!   and a neighbourhood (within 2 cells, 5 wide) always spans 2×2×2 bricks,
 //!   8 lines;
-//! - each brick stores its points itself, up to [`CAPACITY`] of them right
-//!   after its cells (6 lines a brick in all), the rest in a spill chunk of
-//!   its own (in the unit cube at 1 M points no brick holds more than 13);
+//! - each brick stores its points itself, up to [`CAPACITY`] of them after
+//!   a 64-bit mask of its occupied cells (6 lines a brick with its cells),
+//!   the rest in a spill chunk of its own (in the unit cube at 1 M points
+//!   no brick holds more than 13);
 //!
 //! so every line a search can need is known from the candidate's cell alone
 //! and can be asked for at once, cells and points together. The grid takes
 //! 6 bytes a cell (4 for the `u32` grid) but holds the points in them.
+//!
+//! With a reach of 2 (every box over 4 cells a side) the seed and the
+//! searches read the 8 bricks' occupancy masks, each ANDed with the
+//! stencil's cells in that brick (tabled per part and per place of the
+//! window in its brick), and visit only the occupied cells: a search then
+//! goes brick by brick, the candidate's own first, rather than nearest
+//! cell first, and takes 6 % less time in all (the journal's "3-D seed
+//! and searches from the bricks' occupancy masks").
 //!
 //! A cell's address is a sum of one term per axis (its brick's offset along
 //! that axis plus its place inside the brick), read from a table per axis;
@@ -32,8 +40,9 @@ use crate::domain::Domain;
 
 /// Cells in a brick: one cache line of byte cells.
 const BRICK_CELLS: usize = 64;
-/// Points a brick stores itself. 13 fill its sixth line (64 bytes of cells,
-/// 13 × 24 of points, the count and the spill index: 384 bytes); in the
+/// Points a brick stores itself. 13 fill five lines with the occupancy mask
+/// (8 + 13 × 24 = 320 bytes; the spill chunk's index lives beside the
+/// bricks, in [`Bricks::spill_starts`]); in the
 /// unit cube at `k = 30` a brick holds 6.7 points on average and at most 13
 /// (1 M points, seed 1).
 pub(crate) const CAPACITY: usize = 13;
@@ -70,25 +79,31 @@ const fn brick_bits(n: usize) -> usize {
     }
 }
 
-/// The points of one brick of cells, its count first: `insert` reads it,
-/// and the first line is the one a search has asked for.
+/// The points of one brick of cells, its occupancy mask first: `insert`
+/// and the searches read it, and the first line is the one a search has
+/// asked for.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 struct Brick<const N: usize> {
-    /// Points stored (home and ghosts), at most [`BRICK_CELLS`].
-    count: u8,
-    /// `1 +` the start of this brick's chunk in [`Bricks::spill`], or 0.
-    spill: u32,
+    /// A bit per cell, set where the cell holds a point (bit `x + 4y +
+    /// 16z`, the cell's place in the brick): the seed and the searches read
+    /// a brick's occupied cells from it rather than from its cells' line,
+    /// and its population is the count of points stored (home and ghosts).
+    occupied: u64,
     /// Slots `1..=CAPACITY`.
     points: [[f64; N]; CAPACITY],
 }
 
 impl<const N: usize> Brick<N> {
     const EMPTY: Self = Self {
-        count: 0,
-        spill: 0,
+        occupied: 0,
         points: [[f64::INFINITY; N]; CAPACITY],
     };
+
+    /// Points stored (home and ghosts), at most [`BRICK_CELLS`].
+    fn count(&self) -> usize {
+        self.occupied.count_ones() as usize
+    }
 }
 
 /// Bytes a bricked grid allocates before its first point, for a plan with
@@ -103,7 +118,7 @@ pub(crate) fn bytes_for<const N: usize>(padded: &[u64; N]) -> Option<u64> {
         tables = tables.checked_add(m.checked_add(WINDOW as u64)?)?;
     }
     bricks
-        .checked_mul(size_of::<Brick<N>>() as u64 + BRICK_CELLS as u64)?
+        .checked_mul(size_of::<Brick<N>>() as u64 + BRICK_CELLS as u64 + 4)?
         .checked_add(tables.checked_mul(size_of::<usize>() as u64)?)
 }
 
@@ -131,6 +146,10 @@ pub(crate) struct Bricks<const N: usize> {
     bricks: Vec<Brick<N>>,
     /// Points past [`CAPACITY`] in a brick, in chunks of [`SPILL`].
     spill: Vec<[f64; N]>,
+    /// Per brick, `1 +` the start of its chunk in [`Self::spill`], or 0:
+    /// beside the bricks, so that a brick's header is its occupancy mask
+    /// alone and 13 points still fill five lines.
+    spill_starts: Vec<u32>,
     geometry: Geometry<N>,
     lo: [f64; N],
     inv_side: [f64; N],
@@ -148,6 +167,11 @@ pub(crate) struct Bricks<const N: usize> {
     corners: Vec<usize>,
     /// The window entries of the reach box's `2^N` corners.
     corner_entries: Vec<[u8; N]>,
+    /// With a reach of 2 on every axis in 3-D, per part and per place of
+    /// the window's low corner in its brick (`part · 64 + place`), the
+    /// cells of the part's stencil in each of the window's 8 bricks (as
+    /// [`Self::corners`] orders them), as bit masks; else empty.
+    part_masks: Vec<[u64; 8]>,
     stencil_bytes: u64,
     periods: [f64; N],
     any_periodic: bool,
@@ -247,6 +271,9 @@ impl<const N: usize> Bricks<N> {
         bricks.try_reserve_exact(brick_stride).ok()?;
         crate::huge_pages::advise(&bricks);
         bricks.resize(brick_stride, Brick::EMPTY);
+        let mut spill_starts = Vec::new();
+        spill_starts.try_reserve_exact(brick_stride).ok()?;
+        spill_starts.resize(brick_stride, 0);
         let shape = StencilShape {
             reach: plan.reach,
             side: plan.side,
@@ -296,6 +323,17 @@ impl<const N: usize> Bricks<N> {
         if plan.reach.iter().any(|&r| r != 2) {
             corners = Vec::new();
         }
+        let mut part_masks = Vec::new();
+        if N == 3 && !corners.is_empty() {
+            part_masks
+                .try_reserve_exact(stencils.len().checked_mul(BRICK_CELLS)?)
+                .ok()?;
+            for stencil in &stencils {
+                for place in 0..BRICK_CELLS {
+                    part_masks.push(stencil_masks(stencil, place));
+                }
+            }
+        }
         let stencil_bytes = stencils
             .iter()
             .chain([&full, &seed])
@@ -303,11 +341,13 @@ impl<const N: usize> Bricks<N> {
             .sum::<u64>()
             .saturating_add(vec_bytes(&stencils))
             .saturating_add(vec_bytes(&corners))
-            .saturating_add(vec_bytes(&corner_entries));
+            .saturating_add(vec_bytes(&corner_entries))
+            .saturating_add(vec_bytes(&part_masks));
         Some(Self {
             cells,
             bricks,
             spill: Vec::new(),
+            spill_starts,
             geometry: Geometry {
                 tables,
                 counts: plan.cells,
@@ -324,6 +364,7 @@ impl<const N: usize> Bricks<N> {
             seed,
             corners,
             corner_entries,
+            part_masks,
             stencil_bytes,
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
@@ -368,11 +409,12 @@ impl<const N: usize> Bricks<N> {
     #[inline(always)]
     fn point(&self, address: usize) -> Option<&[f64; N]> {
         let slot = usize::from(*self.cells.get(address)?);
-        let brick = self.bricks.get(address / BRICK_CELLS)?;
         if slot <= CAPACITY {
+            let brick = self.bricks.get(address / BRICK_CELLS)?;
             brick.points.get(slot.checked_sub(1)?)
         } else {
-            let start = usize::try_from(brick.spill).ok()?.checked_sub(1)?;
+            let mark = *self.spill_starts.get(address / BRICK_CELLS)?;
+            let start = usize::try_from(mark).ok()?.checked_sub(1)?;
             self.spill.get(start + slot - CAPACITY - 1)
         }
     }
@@ -481,14 +523,55 @@ impl<const N: usize> Bricks<N> {
         None
     }
 
+    /// [`Self::scan`] from the bricks' occupancy masks (a reach of 2 in
+    /// 3-D): the stencil's occupied cells brick by brick, the candidate's
+    /// own brick first, each brick's in address order.
+    #[inline(always)]
+    fn scan_masks<const PERIODIC: bool>(
+        &self,
+        window: &[&[usize; WINDOW]; N],
+        part: usize,
+        p: &[f64; N],
+    ) -> Option<[f64; N]> {
+        let low = Self::address(window, &[1; N]);
+        let first = low & !(BRICK_CELLS - 1);
+        let place = low & (BRICK_CELLS - 1);
+        let masks = self.part_masks.get(part * BRICK_CELLS + place)?;
+        // The candidate's cell is 2 past the low corner on every axis.
+        let own = ((place & 3) + 2) >> 2
+            | (((place >> 2 & 3) + 2) >> 2) << 1
+            | (((place >> 4) + 2) >> 2) << 2;
+        for k in 0..8 {
+            let corner = k ^ own;
+            let (Some(&step), Some(&mask)) = (self.corners.get(corner), masks.get(corner)) else {
+                continue;
+            };
+            let brick_address = first + step;
+            let Some(b) = self.bricks.get(brick_address / BRICK_CELLS) else {
+                continue;
+            };
+            let mut m = b.occupied & mask;
+            while m != 0 {
+                let address = brick_address + m.trailing_zeros() as usize;
+                m &= m - 1;
+                if let Some(q) = self.point(address)
+                    && closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared)
+                {
+                    return Some(*q);
+                }
+            }
+        }
+        None
+    }
+
     /// Spill slots that storing a point in `cell` may open: a chunk for
     /// each placement whose brick has none and could fill past
     /// [`CAPACITY`] (bricks met twice counted twice: an upper bound).
     fn spill_needed(&self, cell: &[usize; N]) -> usize {
         if !self.geometry.any_periodic {
-            let home = self.geometry.home(cell);
-            return match self.bricks.get(home / BRICK_CELLS) {
-                Some(b) if b.spill == 0 && usize::from(b.count) >= CAPACITY => SPILL,
+            let home = self.geometry.home(cell) / BRICK_CELLS;
+            return match (self.bricks.get(home), self.spill_starts.get(home)) {
+                (Some(b), Some(0)) if b.count() >= CAPACITY => SPILL,
                 _ => 0,
             };
         }
@@ -496,15 +579,90 @@ impl<const N: usize> Bricks<N> {
         self.geometry.placements(cell, |_| total += 1);
         let mut needed = 0usize;
         self.geometry.placements(cell, |address| {
-            if let Some(b) = self.bricks.get(address / BRICK_CELLS)
-                && b.spill == 0
-                && usize::from(b.count) + total > CAPACITY
+            let brick = address / BRICK_CELLS;
+            if let (Some(b), Some(0)) = (self.bricks.get(brick), self.spill_starts.get(brick))
+                && b.count() + total > CAPACITY
             {
                 needed += SPILL;
             }
         });
         needed
     }
+}
+
+/// Per 4-bit set of `x` places, the brick cells (bit `x + 4y + 16z`) with
+/// those `x`.
+const X_CELLS: [u64; 16] = spread(1, 0x1111_1111_1111_1111);
+/// Per 4-bit set of `y` places, the brick cells with those `y`.
+const Y_CELLS: [u64; 16] = spread(0xF, 0x0001_0001_0001_0001);
+/// Per 4-bit set of `z` places, the brick cells with those `z`.
+const Z_CELLS: [u64; 16] = spread(0xFFFF, 1);
+
+/// For each 4-bit set of places along an axis whose place `i` is the
+/// pattern `unit << (i · log2(unit + 1))` (a cell, a row, a plane), that
+/// pattern for each place in the set, repeated by `repeat`.
+const fn spread(unit: u64, repeat: u64) -> [u64; 16] {
+    let width = 64 - unit.leading_zeros();
+    let mut table = [0u64; 16];
+    let mut set = 0;
+    while set < 16 {
+        let mut cells = 0u64;
+        let mut place = 0;
+        while place < 4 {
+            if set >> place & 1 == 1 {
+                cells |= unit << (place * width);
+            }
+            place += 1;
+        }
+        #[expect(
+            clippy::indexing_slicing,
+            reason = "set < 16 by the loop condition (compile time only)"
+        )]
+        let entry = &mut table[set];
+        *entry = cells.wrapping_mul(repeat);
+        set += 1;
+    }
+    table
+}
+
+/// A stencil's cells (window entries, reach 2) as bit masks over the 8
+/// bricks of a window whose low corner lies at `place` in its brick (bit
+/// `a` of the brick's index: the next brick along axis `a`).
+fn stencil_masks<const N: usize>(stencil: &[[u8; N]], place: usize) -> [u64; 8] {
+    let lows = [place & 3, place >> 2 & 3, place >> 4];
+    let mut masks = [0u64; 8];
+    for entry in stencil {
+        let mut corner = 0;
+        let mut bit = 0;
+        for (axis, (&e, &low)) in entry.iter().zip(&lows).enumerate() {
+            // Entry 1 is the low corner (an offset of -2).
+            let at = low + usize::from(e).saturating_sub(1);
+            corner |= (at >> 2) << axis;
+            bit |= (at & 3) << (2 * axis);
+        }
+        if let Some(m) = masks.get_mut(corner) {
+            *m |= 1 << bit;
+        }
+    }
+    masks
+}
+
+/// The cells of a brick inside the 5 × 5 × 5 box whose low corner has
+/// places `lows` in its own brick, for the box's brick `corner` (bit `a`
+/// set: the next brick along axis `a`): along an axis, places `low..4` in
+/// the first brick and `0..=low` in the next.
+#[inline(always)]
+fn box_in_brick(lows: [usize; 3], corner: usize) -> u64 {
+    let places = |axis: usize, low: usize| {
+        if corner >> axis & 1 == 1 {
+            (2usize << low) - 1
+        } else {
+            (0xF << low) & 0xF
+        }
+    };
+    let [x, y, z] = lows;
+    let pick = |table: &[u64; 16], set: usize| table.get(set & 0xF).copied().unwrap_or(0);
+    pick(&X_CELLS, places(0, x)) & pick(&Y_CELLS, places(1, y)) & pick(&Z_CELLS, places(2, z))
 }
 
 impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
@@ -514,6 +672,13 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         let window = self.window(&cell);
         let stencil = self.parts.get(part).unwrap_or(&self.full);
         self.prefetch_window(&window);
+        if !self.part_masks.is_empty() {
+            return if self.any_periodic {
+                self.scan_masks::<true>(&window, part, p)
+            } else {
+                self.scan_masks::<false>(&window, part, p)
+            };
+        }
         if self.any_periodic {
             self.scan::<true>(&window, stencil, p)
         } else {
@@ -529,6 +694,37 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
         let window = self.window(&cell);
         let mut found = [NOWHERE; SEED_MAX];
+        // With a reach of 2 on every axis, the box's 2 × 2 × 2 bricks, each
+        // brick's occupied cells from its bit mask.
+        if !self.corners.is_empty() && N == 3 {
+            let low = Self::address(&window, &[1; N]);
+            let first = low & !(BRICK_CELLS - 1);
+            let inside = low & (BRICK_CELLS - 1);
+            let lows = [inside & 3, (inside >> 2) & 3, inside >> 4];
+            let centre = Self::address(&window, &[3; N]);
+            let mut taken = 0;
+            for (corner, &step) in self.corners.iter().enumerate() {
+                let brick_address = first + step;
+                let Some(b) = self.bricks.get(brick_address / BRICK_CELLS) else {
+                    continue;
+                };
+                let mut m = b.occupied & box_in_brick(lows, corner);
+                while m != 0 {
+                    let address = brick_address + m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    if address != centre
+                        && let Some(q) = self.point(address)
+                    {
+                        take(q);
+                        taken += 1;
+                        if taken == limit {
+                            return;
+                        }
+                    }
+                }
+            }
+            return;
+        }
         // With a reach of 2, the whole box, the centre (`p`'s own cell)
         // included and skipped here; otherwise the stencil without it.
         let (n, centre) =
@@ -568,6 +764,7 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         vec_bytes(&self.bricks)
             .saturating_add(vec_bytes(&self.cells))
             .saturating_add(vec_bytes(&self.spill))
+            .saturating_add(vec_bytes(&self.spill_starts))
             .saturating_add(tables)
             .saturating_add(self.stencil_bytes)
     }
@@ -608,13 +805,14 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
             cells,
             bricks,
             spill,
+            spill_starts,
             geometry,
             ..
         } = self;
         let mut stored = true;
         geometry.placements(&cell, |a| {
             if slot(cells, a) == 0 {
-                stored &= put(cells, bricks, spill, a, &p);
+                stored &= put(cells, bricks, (spill, spill_starts), a, &p);
             }
         });
         stored
@@ -626,14 +824,17 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
 fn put<const N: usize>(
     cells: &mut [u8],
     bricks: &mut [Brick<N>],
-    spill: &mut Vec<[f64; N]>,
+    (spill, spill_starts): (&mut Vec<[f64; N]>, &mut [u32]),
     address: usize,
     p: &[f64; N],
 ) -> bool {
-    let Some(brick) = bricks.get_mut(address / BRICK_CELLS) else {
+    let (Some(brick), Some(spill_start)) = (
+        bricks.get_mut(address / BRICK_CELLS),
+        spill_starts.get_mut(address / BRICK_CELLS),
+    ) else {
         return false;
     };
-    let slot = usize::from(brick.count) + 1;
+    let slot = brick.count() + 1;
     let Ok(slot_byte) = u8::try_from(slot) else {
         return false;
     };
@@ -645,7 +846,7 @@ fn put<const N: usize>(
             *q = *p;
         }
     } else {
-        if brick.spill == 0 {
+        if *spill_start == 0 {
             let start = spill.len();
             // `reserve` made the room: this never allocates.
             if spill.capacity() - start < SPILL {
@@ -655,15 +856,15 @@ fn put<const N: usize>(
                 return false;
             };
             spill.resize(start + SPILL, [f64::INFINITY; N]);
-            brick.spill = mark;
+            *spill_start = mark;
         }
-        let start = usize::try_from(brick.spill).unwrap_or(0).saturating_sub(1);
+        let start = usize::try_from(*spill_start).unwrap_or(0).saturating_sub(1);
         match spill.get_mut(start + slot - CAPACITY - 1) {
             Some(q) => *q = *p,
             None => return false,
         }
     }
-    brick.count = slot_byte;
+    brick.occupied |= 1 << (address % BRICK_CELLS);
     if let Some(c) = cells.get_mut(address) {
         *c = slot_byte;
     }
@@ -688,7 +889,11 @@ mod tests {
 
     #[test]
     fn a_brick_is_five_cache_lines() {
-        assert_eq!(size_of::<Brick<3>>(), 320, "13 points, count, spill");
+        assert_eq!(
+            size_of::<Brick<3>>(),
+            320,
+            "13 points and the occupancy mask"
+        );
         assert_eq!(align_of::<Brick<3>>(), 64, "line-aligned");
     }
 
@@ -771,6 +976,70 @@ mod tests {
             0.1,
             7,
         );
+    }
+
+    /// The seed read from the bricks' occupancy masks gives the points of
+    /// the 5 × 5 × 5 box around the cell but its centre, as the cell-by-cell
+    /// scan does (bounded and periodic, ghosts included); and each part's
+    /// masks hold exactly its stencil's cells.
+    #[test]
+    fn masks_agree_with_the_cells() {
+        for (domain, seed) in [
+            (Domain::from_extent([1.0, 0.8, 0.6]).unwrap(), 11),
+            (
+                Domain::from_extent([0.9, 1.0, 0.7])
+                    .unwrap()
+                    .with_periodic([true, false, true]),
+                12,
+            ),
+        ] {
+            let r = 0.1;
+            let mut g = bricks(&domain, r);
+            assert_eq!(g.reach, [2; 3], "reach");
+            assert_eq!(g.part_masks.len(), g.parts.len() * BRICK_CELLS, "masks");
+            let mut rng = crate::random::seeded_rng(seed);
+            let mut probes = Vec::new();
+            for _ in 0..2000 {
+                let p: [f64; 3] = core::array::from_fn(|axis| {
+                    domain.lo()[axis]
+                        + crate::random::unit(&mut rng) * (domain.hi()[axis] - domain.lo()[axis])
+                });
+                probes.push(p);
+                if g.conflict(&p).is_none() {
+                    assert!(g.reserve(&p, u64::MAX), "reserve");
+                    g.insert(p);
+                }
+            }
+            let mut checked = 0;
+            for p in &probes {
+                let mut by_masks = Vec::new();
+                g.seed(p, 64, |q| by_masks.push(q.map(f64::to_bits)));
+                let (cell, _) = locate(p, &g.lo, &g.inv_side, &g.last, 1);
+                let window = g.window(&cell);
+                let mut found = [NOWHERE; 128];
+                let n = g.occupied_box(window, &mut found);
+                let centre = Bricks::address(&window, &[3; 3]);
+                let mut by_cells: Vec<_> = found
+                    .iter()
+                    .take(n)
+                    .filter(|&&a| a != centre)
+                    .filter_map(|&a| g.point(a))
+                    .map(|q| q.map(f64::to_bits))
+                    .collect();
+                by_masks.sort_unstable();
+                by_cells.sort_unstable();
+                assert_eq!(by_masks, by_cells, "{p:?}");
+                checked += by_cells.len();
+            }
+            assert!(checked > 5000, "{checked} points compared");
+            for (k, stencil) in g.parts.iter().enumerate() {
+                for place in 0..BRICK_CELLS {
+                    let masks = g.part_masks[k * BRICK_CELLS + place];
+                    let cells: u32 = masks.iter().map(|m| m.count_ones()).sum();
+                    assert_eq!(cells as usize, stencil.len(), "part {k}, place {place}");
+                }
+            }
+        }
     }
 
     /// A brick filled past its own room spills, and its points are still
