@@ -2,31 +2,32 @@
 //!
 //! The same cells as [`super::dense::Dense`] (side `<= r/√N`, at most one
 //! point each, padded by the reach, ghosts across periodic faces) and the
-//! same part stencils, in another layout. In 3-D at a million points the sampler waits on memory: a pick's
-//! 5×5×5 neighbourhood is 25 rows of `u32` indices in 25 to 35 cache lines,
-//! and each occupied cell then sends it to a point somewhere in a vector of
-//! 24 MB, a second miss that cannot start before the first ends. Here
+//! same part stencils, in another layout. In 3-D at a million points a
+//! pick's 5×5×5 neighbourhood in the `u32` grid is 25 rows of indices in
+//! 25 to 35 cache lines, and each occupied cell then sends it to a point
+//! somewhere in a vector of 24 MB, a second miss that cannot start before
+//! the first ends. Here
 //!
-//! - cells are grouped in bricks of 4×4×4, each cell a byte: the point's
-//!   slot in its brick (0 when empty), so a brick's cells are one cache line
-//!   and a neighbourhood (within 2 cells, 5 wide) always spans 2×2×2 bricks,
-//!   8 lines;
-//! - each brick stores its points itself, up to [`CAPACITY`] of them after
-//!   a 64-bit mask of its occupied cells (6 lines a brick with its cells),
-//!   the rest in a spill chunk of its own (in the unit cube at 1 M points
-//!   no brick holds more than 13);
+//! - cells are grouped in bricks of 4×4×4, and a neighbourhood (within 2
+//!   cells, 5 wide) always spans 2×2×2 bricks;
+//! - a brick is a 64-bit mask of its occupied cells (bit `x + 4y + 16z`,
+//!   the cell's place) followed by its points in the order of those
+//!   places, up to [`CAPACITY`] of them (five lines in all), the rest in a
+//!   spill chunk of its own (in the unit cube at 1 M points no brick holds
+//!   more than 13); a cell's point is at its rank among the occupied
+//!   places, so there is no per-cell array at all;
 //!
 //! so every line a search can need is known from the candidate's cell alone
-//! and can be asked for at once, cells and points together. The grid takes
-//! 6 bytes a cell (4 for the `u32` grid) but holds the points in them.
+//! and can be asked for at once. The grid takes 5 bytes a cell (4 for the
+//! `u32` grid) but holds the points in them.
 //!
 //! With a reach of 2 (every box over 4 cells a side) the seed and the
-//! searches read the 8 bricks' occupancy masks, each ANDed with the
-//! stencil's cells in that brick (tabled per part and per place of the
-//! window in its brick), and visit only the occupied cells: a search then
-//! goes brick by brick, the candidate's own first, rather than nearest
-//! cell first, and takes 6 % less time in all (the journal's "3-D seed
-//! and searches from the bricks' occupancy masks").
+//! searches AND the 8 bricks' masks with the stencil's cells in each brick
+//! (tabled per part and per place of the window in its brick) and visit
+//! only the occupied cells: a search goes brick by brick, the candidate's
+//! own first, rather than nearest cell first (the journal's "3-D seed and
+//! searches from the bricks' occupancy masks"). Other reaches scan the
+//! stencil cell by cell, reading each cell's bit.
 //!
 //! A cell's address is a sum of one term per axis (its brick's offset along
 //! that axis plus its place inside the brick), read from a table per axis;
@@ -38,7 +39,7 @@ use super::{DensePlan, NeighbourGrid};
 use crate::budget::{bytes_of, vec_bytes};
 use crate::domain::Domain;
 
-/// Cells in a brick: one cache line of byte cells.
+/// Cells in a brick: the bits of its occupancy mask.
 const BRICK_CELLS: usize = 64;
 /// Points a brick stores itself. 13 fill five lines with the occupancy mask
 /// (8 + 13 × 24 = 320 bytes; the spill chunk's index lives beside the
@@ -86,11 +87,10 @@ const fn brick_bits(n: usize) -> usize {
 #[repr(C, align(64))]
 struct Brick<const N: usize> {
     /// A bit per cell, set where the cell holds a point (bit `x + 4y +
-    /// 16z`, the cell's place in the brick): the seed and the searches read
-    /// a brick's occupied cells from it rather than from its cells' line,
-    /// and its population is the count of points stored (home and ghosts).
+    /// 16z`, the cell's place in the brick); its population is the count
+    /// of points stored (home and ghosts).
     occupied: u64,
-    /// Slots `1..=CAPACITY`.
+    /// The first [`CAPACITY`] points, in the order of their cells' places.
     points: [[f64; N]; CAPACITY],
 }
 
@@ -118,7 +118,7 @@ pub(crate) fn bytes_for<const N: usize>(padded: &[u64; N]) -> Option<u64> {
         tables = tables.checked_add(m.checked_add(WINDOW as u64)?)?;
     }
     bricks
-        .checked_mul(size_of::<Brick<N>>() as u64 + BRICK_CELLS as u64 + 4)?
+        .checked_mul(size_of::<Brick<N>>() as u64 + 4)?
         .checked_add(tables.checked_mul(size_of::<usize>() as u64)?)
 }
 
@@ -139,10 +139,7 @@ struct Geometry<const N: usize> {
 
 #[derive(Debug)]
 pub(crate) struct Bricks<const N: usize> {
-    /// Per cell, brick by brick (one cache line each), `0` if empty, else
-    /// the 1-based slot of its point in its brick.
-    cells: Vec<u8>,
-    /// The points of each brick.
+    /// The points of each brick, with its occupancy mask.
     bricks: Vec<Brick<N>>,
     /// Points past [`CAPACITY`] in a brick, in chunks of [`SPILL`].
     spill: Vec<[f64; N]>,
@@ -227,10 +224,19 @@ impl<const N: usize> Geometry<N> {
     }
 }
 
-/// The slot held by the cell at `address` (0: empty).
+/// Whether the cell at `address` holds a point.
 #[inline(always)]
-fn slot(cells: &[u8], address: usize) -> u8 {
-    cells.get(address).copied().unwrap_or(0)
+fn is_occupied<const N: usize>(bricks: &[Brick<N>], address: usize) -> bool {
+    bricks
+        .get(address / BRICK_CELLS)
+        .is_some_and(|b| b.occupied >> (address % BRICK_CELLS) & 1 == 1)
+}
+
+/// The rank of place `bit` among a brick's occupied cells: where its
+/// point is stored (points are kept in the order of their cells' places).
+#[inline(always)]
+fn rank(occupied: u64, bit: usize) -> usize {
+    (occupied & ((1u64 << bit) - 1)).count_ones() as usize
 }
 
 impl<const N: usize> Bricks<N> {
@@ -260,13 +266,6 @@ impl<const N: usize> Bricks<N> {
             table.resize(padded + WINDOW, 0);
             brick_stride = brick_stride.checked_mul(padded.div_ceil(side))?;
         }
-        let mut cells = Vec::new();
-        cells
-            .try_reserve_exact(brick_stride.checked_mul(BRICK_CELLS)?)
-            .ok()?;
-        // Before the first write: pages get their size when first touched.
-        crate::huge_pages::advise(&cells);
-        cells.resize(brick_stride * BRICK_CELLS, 0);
         let mut bricks = Vec::new();
         bricks.try_reserve_exact(brick_stride).ok()?;
         crate::huge_pages::advise(&bricks);
@@ -344,7 +343,6 @@ impl<const N: usize> Bricks<N> {
             .saturating_add(vec_bytes(&corner_entries))
             .saturating_add(vec_bytes(&part_masks));
         Some(Self {
-            cells,
             bricks,
             spill: Vec::new(),
             spill_starts,
@@ -399,36 +397,41 @@ impl<const N: usize> Bricks<N> {
             .sum()
     }
 
-    /// The slot held by the cell at `address` (0: empty).
+    /// Whether the cell at `address` holds a point.
     #[inline(always)]
-    fn slot(&self, address: usize) -> u8 {
-        slot(&self.cells, address)
+    fn is_occupied(&self, address: usize) -> bool {
+        is_occupied(&self.bricks, address)
     }
 
-    /// The point in the cell at `address`, if any.
+    /// The point in the cell at `address`, if any: its brick's points are
+    /// in the order of their cells' places, so the cell's rank among the
+    /// occupied ones says where.
     #[inline(always)]
     fn point(&self, address: usize) -> Option<&[f64; N]> {
-        let slot = usize::from(*self.cells.get(address)?);
-        if slot <= CAPACITY {
-            let brick = self.bricks.get(address / BRICK_CELLS)?;
-            brick.points.get(slot.checked_sub(1)?)
+        let brick = self.bricks.get(address / BRICK_CELLS)?;
+        let bit = address % BRICK_CELLS;
+        if brick.occupied >> bit & 1 == 0 {
+            return None;
+        }
+        let at = rank(brick.occupied, bit);
+        if at < CAPACITY {
+            brick.points.get(at)
         } else {
             let mark = *self.spill_starts.get(address / BRICK_CELLS)?;
             let start = usize::try_from(mark).ok()?.checked_sub(1)?;
-            self.spill.get(start + slot - CAPACITY - 1)
+            self.spill.get(start + at - CAPACITY)
         }
     }
 
-    /// Asks for the bricks of a window within `reach`: per brick its
-    /// cells' line and the three lines that hold its first 7 points (a
-    /// brick holds 6.7 on average). With a
+    /// Asks for the bricks of a window within `reach`: per brick the three
+    /// lines that hold its mask and first 7 points (a brick holds 6.7 on
+    /// average). With a
     /// reach of 2 (every box over 4 cells a side) the window spans exactly
     /// 2 bricks per axis, found from the first by [`Self::corners`]; else
     /// the bricks of the reach box's corners.
     #[inline(always)]
     fn prefetch_window(&self, window: &[&[usize; WINDOW]; N]) {
         let ask = |address: usize| {
-            crate::prefetch::prefetch(&self.cells, address);
             if let Some(b) = self.bricks.get(address / BRICK_CELLS) {
                 crate::prefetch::prefetch(&b.points, 0);
                 crate::prefetch::prefetch(&b.points, 3);
@@ -470,11 +473,11 @@ impl<const N: usize> Bricks<N> {
     /// subset suits it.
     #[inline(always)]
     fn note<const M: usize>(&self, address: usize, found: &mut [usize; M], n: usize) -> usize {
-        let slot = self.slot(address);
+        let occupied = self.is_occupied(address);
         if let Some(f) = found.get_mut(n % M) {
             *f = address;
         }
-        n + usize::from(slot != 0)
+        n + usize::from(occupied)
     }
 
     /// [`Self::occupied`] for the cells within 2 of a 3-D window's centre
@@ -762,7 +765,6 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
             .map(vec_bytes)
             .fold(0u64, u64::saturating_add);
         vec_bytes(&self.bricks)
-            .saturating_add(vec_bytes(&self.cells))
             .saturating_add(vec_bytes(&self.spill))
             .saturating_add(vec_bytes(&self.spill_starts))
             .saturating_add(tables)
@@ -794,7 +796,7 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         // the newcomer, the set stays valid. Every placement is checked for
         // room before any is written, so a point is stored with all its
         // ghosts or not at all.
-        if self.slot(home) != 0 {
+        if self.is_occupied(home) {
             return false;
         }
         let needed = self.spill_needed(&cell);
@@ -802,7 +804,6 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
             return false;
         }
         let Self {
-            cells,
             bricks,
             spill,
             spill_starts,
@@ -811,18 +812,19 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         } = self;
         let mut stored = true;
         geometry.placements(&cell, |a| {
-            if slot(cells, a) == 0 {
-                stored &= put(cells, bricks, (spill, spill_starts), a, &p);
+            if !is_occupied(bricks, a) {
+                stored &= put(bricks, (spill, spill_starts), a, &p);
             }
         });
         stored
     }
 }
 
-/// Stores `p` in the (empty) cell at `address`; `false` if its brick
-/// is full or needs a spill chunk there is no room for.
+/// Stores `p` in the (empty) cell at `address`, at its rank among the
+/// brick's occupied cells (later ranks move up one, into the brick's
+/// spill chunk past [`CAPACITY`]); `false` if the brick needs a spill
+/// chunk there is no room for.
 fn put<const N: usize>(
-    cells: &mut [u8],
     bricks: &mut [Brick<N>],
     (spill, spill_starts): (&mut Vec<[f64; N]>, &mut [u32]),
     address: usize,
@@ -834,40 +836,51 @@ fn put<const N: usize>(
     ) else {
         return false;
     };
-    let slot = brick.count() + 1;
-    let Ok(slot_byte) = u8::try_from(slot) else {
-        return false;
-    };
-    if slot > BRICK_CELLS {
+    let bit = address % BRICK_CELLS;
+    let count = brick.count();
+    if brick.occupied >> bit & 1 == 1 || count >= BRICK_CELLS {
         return false;
     }
-    if slot <= CAPACITY {
-        if let Some(q) = brick.points.get_mut(slot - 1) {
-            *q = *p;
+    if count >= CAPACITY && *spill_start == 0 {
+        let start = spill.len();
+        // `reserve` made the room: this never allocates.
+        if spill.capacity() - start < SPILL {
+            return false;
         }
+        let Ok(mark) = u32::try_from(start + 1) else {
+            return false;
+        };
+        spill.resize(start + SPILL, [f64::INFINITY; N]);
+        *spill_start = mark;
+    }
+    let start = usize::try_from(*spill_start).unwrap_or(0).saturating_sub(1);
+    let at = rank(brick.occupied, bit);
+    // Ranks `at..count` move up one, the highest first.
+    for i in (at..count).rev() {
+        let moved = if i < CAPACITY {
+            brick.points.get(i).copied()
+        } else {
+            spill.get(start + i - CAPACITY).copied()
+        };
+        let to = if i + 1 < CAPACITY {
+            brick.points.get_mut(i + 1)
+        } else {
+            spill.get_mut(start + i + 1 - CAPACITY)
+        };
+        if let (Some(q), Some(to)) = (moved, to) {
+            *to = q;
+        }
+    }
+    let slot = if at < CAPACITY {
+        brick.points.get_mut(at)
     } else {
-        if *spill_start == 0 {
-            let start = spill.len();
-            // `reserve` made the room: this never allocates.
-            if spill.capacity() - start < SPILL {
-                return false;
-            }
-            let Ok(mark) = u32::try_from(start + 1) else {
-                return false;
-            };
-            spill.resize(start + SPILL, [f64::INFINITY; N]);
-            *spill_start = mark;
-        }
-        let start = usize::try_from(*spill_start).unwrap_or(0).saturating_sub(1);
-        match spill.get_mut(start + slot - CAPACITY - 1) {
-            Some(q) => *q = *p,
-            None => return false,
-        }
+        spill.get_mut(start + at - CAPACITY)
+    };
+    match slot {
+        Some(q) => *q = *p,
+        None => return false,
     }
-    brick.occupied |= 1 << (address % BRICK_CELLS);
-    if let Some(c) = cells.get_mut(address) {
-        *c = slot_byte;
-    }
+    brick.occupied |= 1 << bit;
     true
 }
 
@@ -904,7 +917,7 @@ mod tests {
         let g = bricks(&Domain::from_extent([1.0, 0.3, 0.5]).unwrap(), 0.1);
         let padded: [usize; 3] =
             core::array::from_fn(|i| g.geometry.counts[i] + 2 * g.geometry.pad[i]);
-        let mut seen = vec![false; g.cells.len()];
+        let mut seen = vec![false; g.bricks.len() * BRICK_CELLS];
         for z in 0..padded[2] {
             for y in 0..padded[1] {
                 for x in 0..padded[0] {
