@@ -528,18 +528,26 @@ impl<const N: usize> Bricks<N> {
 
     /// [`Self::scan`] from the bricks' occupancy masks (a reach of 2 in
     /// 3-D): the stencil's occupied cells brick by brick, the candidate's
-    /// own brick first, each brick's in address order.
+    /// own brick first, each brick's in address order. (Without masks for
+    /// this part and place, which `try_new` always builds, the cell-by-cell
+    /// scan of `stencil`: never a silent "no conflict".)
     #[inline(always)]
     fn scan_masks<const PERIODIC: bool>(
         &self,
         window: &[&[usize; WINDOW]; N],
         part: usize,
+        stencil: &[[u8; N]],
         p: &[f64; N],
     ) -> Option<[f64; N]> {
         let low = Self::address(window, &[1; N]);
         let first = low & !(BRICK_CELLS - 1);
         let place = low & (BRICK_CELLS - 1);
-        let masks = self.part_masks.get(part * BRICK_CELLS + place)?;
+        let (Some(masks), 8) = (
+            self.part_masks.get(part * BRICK_CELLS + place),
+            self.corners.len(),
+        ) else {
+            return self.scan::<PERIODIC>(window, stencil, p);
+        };
         // The candidate's cell is 2 past the low corner on every axis.
         let own = ((place & 3) + 2) >> 2
             | (((place >> 2 & 3) + 2) >> 2) << 1
@@ -677,9 +685,9 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
         self.prefetch_window(&window);
         if !self.part_masks.is_empty() {
             return if self.any_periodic {
-                self.scan_masks::<true>(&window, part, p)
+                self.scan_masks::<true>(&window, part, stencil, p)
             } else {
-                self.scan_masks::<false>(&window, part, p)
+                self.scan_masks::<false>(&window, part, stencil, p)
             };
         }
         if self.any_periodic {
