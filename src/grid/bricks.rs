@@ -151,7 +151,6 @@ pub(crate) struct Bricks<const N: usize> {
     lo: [f64; N],
     inv_side: [f64; N],
     last: [usize; N],
-    reach: [usize; N],
     /// The whole cell's stencil (the pick's prefetch and the seed's cells).
     full: Vec<[u8; N]>,
     /// The parts' stencils, as [`super::dense::Dense`]'s.
@@ -169,6 +168,9 @@ pub(crate) struct Bricks<const N: usize> {
     /// cells of the part's stencil in each of the window's 8 bricks (as
     /// [`Self::corners`] orders them), as bit masks; else empty.
     part_masks: Vec<[u64; 8]>,
+    /// As [`Self::part_masks`] for the seed's cells (the whole stencil but
+    /// the centre), per place; empty with them.
+    seed_masks: Vec<[u64; 8]>,
     stencil_bytes: u64,
     periods: [f64; N],
     any_periodic: bool,
@@ -323,6 +325,7 @@ impl<const N: usize> Bricks<N> {
             corners = Vec::new();
         }
         let mut part_masks = Vec::new();
+        let mut seed_masks = Vec::new();
         if N == 3 && !corners.is_empty() {
             part_masks
                 .try_reserve_exact(stencils.len().checked_mul(BRICK_CELLS)?)
@@ -331,6 +334,10 @@ impl<const N: usize> Bricks<N> {
                 for place in 0..BRICK_CELLS {
                     part_masks.push(stencil_masks(stencil, place));
                 }
+            }
+            seed_masks.try_reserve_exact(BRICK_CELLS).ok()?;
+            for place in 0..BRICK_CELLS {
+                seed_masks.push(stencil_masks(&seed, place));
             }
         }
         let stencil_bytes = stencils
@@ -341,7 +348,8 @@ impl<const N: usize> Bricks<N> {
             .saturating_add(vec_bytes(&stencils))
             .saturating_add(vec_bytes(&corners))
             .saturating_add(vec_bytes(&corner_entries))
-            .saturating_add(vec_bytes(&part_masks));
+            .saturating_add(vec_bytes(&part_masks))
+            .saturating_add(vec_bytes(&seed_masks));
         Some(Self {
             bricks,
             spill: Vec::new(),
@@ -356,13 +364,13 @@ impl<const N: usize> Bricks<N> {
             lo: domain.lo(),
             inv_side: plan.side.map(|s| 1.0 / s),
             last: plan.cells.map(|m| m.saturating_sub(1)),
-            reach: plan.reach,
             full,
             parts: stencils,
             seed,
             corners,
             corner_entries,
             part_masks,
+            seed_masks,
             stencil_bytes,
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
@@ -480,30 +488,6 @@ impl<const N: usize> Bricks<N> {
         n + usize::from(occupied)
     }
 
-    /// [`Self::occupied`] for the cells within 2 of a 3-D window's centre
-    /// (the whole stencil of a reach of 2), the centre included, row by row
-    /// in the `u32` grid's address order: the seed's cells, each row's
-    /// address computed once.
-    #[inline(always)]
-    fn occupied_box<const M: usize>(
-        &self,
-        window: [&[usize; WINDOW]; 3],
-        found: &mut [usize; M],
-    ) -> usize {
-        let [w0, w1, w2] = window;
-        let [x0, x1, x2, x3, x4] = [w0[1], w0[2], w0[3], w0[4], w0[5]];
-        let mut n = 0;
-        for &plane in &w2[1..6] {
-            for &y in &w1[1..6] {
-                let row = plane + y;
-                for address in [row + x0, row + x1, row + x2, row + x3, row + x4] {
-                    n = self.note(address, found, n);
-                }
-            }
-        }
-        n
-    }
-
     #[inline(always)]
     fn scan<const PERIODIC: bool>(
         &self,
@@ -527,10 +511,9 @@ impl<const N: usize> Bricks<N> {
     }
 
     /// [`Self::scan`] from the bricks' occupancy masks (a reach of 2 in
-    /// 3-D): the stencil's occupied cells brick by brick, the candidate's
-    /// own brick first, each brick's in address order. (Without masks for
-    /// this part and place, which `try_new` always builds, the cell-by-cell
-    /// scan of `stencil`: never a silent "no conflict".)
+    /// 3-D), through [`Self::first_masked`]. (Without masks for this part
+    /// and place, which `try_new` always builds, the cell-by-cell scan of
+    /// `stencil`: never a silent "no conflict".)
     #[inline(always)]
     fn scan_masks<const PERIODIC: bool>(
         &self,
@@ -540,15 +523,29 @@ impl<const N: usize> Bricks<N> {
         p: &[f64; N],
     ) -> Option<[f64; N]> {
         let low = Self::address(window, &[1; N]);
-        let first = low & !(BRICK_CELLS - 1);
-        let place = low & (BRICK_CELLS - 1);
-        let (Some(masks), 8) = (
-            self.part_masks.get(part * BRICK_CELLS + place),
-            self.corners.len(),
-        ) else {
+        let Some(masks) = self.part_masks.get(part * BRICK_CELLS + low % BRICK_CELLS) else {
             return self.scan::<PERIODIC>(window, stencil, p);
         };
-        // The candidate's cell is 2 past the low corner on every axis.
+        self.first_masked(low, masks, |q| {
+            closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared)
+        })
+    }
+
+    /// The points of the occupied cells among `masks` (the window whose
+    /// low corner is at `low` spans 8 bricks, ordered as
+    /// [`Self::corners`]; a mask per brick), brick by brick, the one
+    /// holding the window's centre first, each brick's in address order,
+    /// handed to `stop` until it says so: then that point.
+    #[inline(always)]
+    fn first_masked(
+        &self,
+        low: usize,
+        masks: &[u64; 8],
+        mut stop: impl FnMut(&[f64; N]) -> bool,
+    ) -> Option<[f64; N]> {
+        let first = low & !(BRICK_CELLS - 1);
+        let place = low % BRICK_CELLS;
+        // The centre is 2 past the low corner on every axis.
         let own = ((place & 3) + 2) >> 2
             | (((place >> 2 & 3) + 2) >> 2) << 1
             | (((place >> 4) + 2) >> 2) << 2;
@@ -566,7 +563,7 @@ impl<const N: usize> Bricks<N> {
                 let address = brick_address + m.trailing_zeros() as usize;
                 m &= m - 1;
                 if let Some(q) = self.point(address)
-                    && closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared)
+                    && stop(q)
                 {
                     return Some(*q);
                 }
@@ -601,41 +598,6 @@ impl<const N: usize> Bricks<N> {
     }
 }
 
-/// Per 4-bit set of `x` places, the brick cells (bit `x + 4y + 16z`) with
-/// those `x`.
-const X_CELLS: [u64; 16] = spread(1, 0x1111_1111_1111_1111);
-/// Per 4-bit set of `y` places, the brick cells with those `y`.
-const Y_CELLS: [u64; 16] = spread(0xF, 0x0001_0001_0001_0001);
-/// Per 4-bit set of `z` places, the brick cells with those `z`.
-const Z_CELLS: [u64; 16] = spread(0xFFFF, 1);
-
-/// For each 4-bit set of places along an axis whose place `i` is the
-/// pattern `unit << (i · log2(unit + 1))` (a cell, a row, a plane), that
-/// pattern for each place in the set, repeated by `repeat`.
-const fn spread(unit: u64, repeat: u64) -> [u64; 16] {
-    let width = 64 - unit.leading_zeros();
-    let mut table = [0u64; 16];
-    let mut set = 0;
-    while set < 16 {
-        let mut cells = 0u64;
-        let mut place = 0;
-        while place < 4 {
-            if set >> place & 1 == 1 {
-                cells |= unit << (place * width);
-            }
-            place += 1;
-        }
-        #[expect(
-            clippy::indexing_slicing,
-            reason = "set < 16 by the loop condition (compile time only)"
-        )]
-        let entry = &mut table[set];
-        *entry = cells.wrapping_mul(repeat);
-        set += 1;
-    }
-    table
-}
-
 /// A stencil's cells (window entries, reach 2) as bit masks over the 8
 /// bricks of a window whose low corner lies at `place` in its brick (bit
 /// `a` of the brick's index: the next brick along axis `a`).
@@ -656,24 +618,6 @@ fn stencil_masks<const N: usize>(stencil: &[[u8; N]], place: usize) -> [u64; 8] 
         }
     }
     masks
-}
-
-/// The cells of a brick inside the 5 × 5 × 5 box whose low corner has
-/// places `lows` in its own brick, for the box's brick `corner` (bit `a`
-/// set: the next brick along axis `a`): along an axis, places `low..4` in
-/// the first brick and `0..=low` in the next.
-#[inline(always)]
-fn box_in_brick(lows: [usize; 3], corner: usize) -> u64 {
-    let places = |axis: usize, low: usize| {
-        if corner >> axis & 1 == 1 {
-            (2usize << low) - 1
-        } else {
-            (0xF << low) & 0xF
-        }
-    };
-    let [x, y, z] = lows;
-    let pick = |table: &[u64; 16], set: usize| table.get(set & 0xF).copied().unwrap_or(0);
-    pick(&X_CELLS, places(0, x)) & pick(&Y_CELLS, places(1, y)) & pick(&Z_CELLS, places(2, z))
 }
 
 impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
@@ -704,55 +648,26 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
     fn seed(&self, p: &[f64; N], limit: usize, mut take: impl FnMut(&[f64; N])) {
         let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
         let window = self.window(&cell);
-        let mut found = [NOWHERE; SEED_MAX];
-        // With a reach of 2 on every axis, the box's 2 × 2 × 2 bricks, each
-        // brick's occupied cells from its bit mask.
-        if !self.corners.is_empty() && N == 3 {
-            let low = Self::address(&window, &[1; N]);
-            let first = low & !(BRICK_CELLS - 1);
-            let inside = low & (BRICK_CELLS - 1);
-            let lows = [inside & 3, (inside >> 2) & 3, inside >> 4];
-            let centre = Self::address(&window, &[3; N]);
+        // With a reach of 2 on every axis, the window's 2 × 2 × 2 bricks,
+        // each brick's occupied cells from its mask.
+        let low = Self::address(&window, &[1; N]);
+        if let Some(masks) = self.seed_masks.get(low % BRICK_CELLS) {
             let mut taken = 0;
-            for (corner, &step) in self.corners.iter().enumerate() {
-                let brick_address = first + step;
-                let Some(b) = self.bricks.get(brick_address / BRICK_CELLS) else {
-                    continue;
-                };
-                let mut m = b.occupied & box_in_brick(lows, corner);
-                while m != 0 {
-                    let address = brick_address + m.trailing_zeros() as usize;
-                    m &= m - 1;
-                    if address != centre
-                        && let Some(q) = self.point(address)
-                    {
-                        take(q);
-                        taken += 1;
-                        if taken == limit {
-                            return;
-                        }
-                    }
-                }
-            }
+            self.first_masked(low, masks, |q| {
+                take(q);
+                taken += 1;
+                taken == limit
+            });
             return;
         }
-        // With a reach of 2, the whole box, the centre (`p`'s own cell)
-        // included and skipped here; otherwise the stencil without it.
-        let (n, centre) =
-            if let ([w0, w1, w2], [2, 2, 2]) = (window.as_slice(), self.reach.as_slice()) {
-                let centre = Self::address(&window, &[3; N]);
-                (self.occupied_box([w0, w1, w2], &mut found), centre)
-            } else {
-                (self.occupied(&window, &self.seed, &mut found), NOWHERE)
-            };
+        let mut found = [NOWHERE; SEED_MAX];
+        let n = self.occupied(&window, &self.seed, &mut found);
         let mut taken = 0;
         for &address in found.iter().take(n) {
             if taken == limit {
                 break;
             }
-            if address != centre
-                && let Some(q) = self.point(address)
-            {
+            if let Some(q) = self.point(address) {
                 take(q);
                 taken += 1;
             }
@@ -979,7 +894,7 @@ mod tests {
                 }
             }
             assert!(hits > 300 && misses >= 5, "{hits} hits, {misses} misses");
-            g.reach
+            g.geometry.pad
         }
         let unit = Domain::from_extent([1.0, 0.8, 0.6]).unwrap();
         assert_eq!(check(unit, 0.1, 3), [2; 3], "reach");
@@ -1016,8 +931,13 @@ mod tests {
         ] {
             let r = 0.1;
             let mut g = bricks(&domain, r);
-            assert_eq!(g.reach, [2; 3], "reach");
+            assert_eq!(g.geometry.pad, [2; 3], "reach");
             assert_eq!(g.part_masks.len(), g.parts.len() * BRICK_CELLS, "masks");
+            assert_eq!(
+                g.seed.len(),
+                124,
+                "the seed's stencil: the box but its centre"
+            );
             let mut rng = crate::random::seeded_rng(seed);
             let mut probes = Vec::new();
             for _ in 0..2000 {
@@ -1037,16 +957,21 @@ mod tests {
                 g.seed(p, 64, |q| by_masks.push(q.map(f64::to_bits)));
                 let (cell, _) = locate(p, &g.lo, &g.inv_side, &g.last, 1);
                 let window = g.window(&cell);
-                let mut found = [NOWHERE; 128];
-                let n = g.occupied_box(window, &mut found);
-                let centre = Bricks::address(&window, &[3; 3]);
-                let mut by_cells: Vec<_> = found
-                    .iter()
-                    .take(n)
-                    .filter(|&&a| a != centre)
-                    .filter_map(|&a| g.point(a))
-                    .map(|q| q.map(f64::to_bits))
-                    .collect();
+                // The box cell by cell: window entries 1..=5 on each axis.
+                let mut by_cells = Vec::new();
+                for z in 1..=5u8 {
+                    for y in 1..=5u8 {
+                        for x in 1..=5u8 {
+                            if [x, y, z] == [3; 3] {
+                                continue;
+                            }
+                            let a = Bricks::address(&window, &[x, y, z]);
+                            if let Some(q) = g.point(a) {
+                                by_cells.push(q.map(f64::to_bits));
+                            }
+                        }
+                    }
+                }
                 by_masks.sort_unstable();
                 by_cells.sort_unstable();
                 assert_eq!(by_masks, by_cells, "{p:?}");
