@@ -947,7 +947,9 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
             grid.seed(&parent, B, |q| cache.push(q));
             // Far from every face (the usual case), no candidate can leave
             // the box: skip the per-attempt test. Candidates lie within
-            // 2r·(1 + 1e-7) of the parent; the test keeps 4r.
+            // 2r·(1 + 1e-6) of the parent (the `f32` draws of `wide.rs`
+            // round; the others stay within 2r·(1 + 1e-7)); the test
+            // keeps 4r.
             let interior = !periodic && self.domain.holds_ball(&parent, reach);
             // Coordinates below 2²⁸·r: the candidate is its offset from the
             // parent to within 2⁻²⁵·r, so the cache takes the offset drawn
@@ -956,10 +958,20 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
             let near_origin =
                 !periodic && ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
             for _ in 0..self.attempts {
-                let (offset, offset_in_r) = if ahead {
-                    self.ahead.next(self.candidates, self.rng)
+                let offset = if ahead {
+                    let (j, offset_in_r) = self.ahead.next_unit(self.candidates, self.rng);
+                    // The quick check first: it needs only the offset in
+                    // units of `r`, and most candidates fail it, so most
+                    // never become a point in `f64`. (Its answer does not
+                    // depend on the box or the region, and a blocked
+                    // candidate is turned away whatever they say: the same
+                    // decisions in either order.)
+                    if near_origin && cache.block_relative(&offset_in_r) {
+                        continue;
+                    }
+                    self.ahead.offset(j, self.candidates)
                 } else {
-                    (self.candidates.offset(self.rng, &mut state), [0.0; N])
+                    self.candidates.offset(self.rng, &mut state)
                 };
                 let mut candidate = add(&parent, &offset);
                 if !interior && !self.domain.wrap(&mut candidate) {
@@ -972,7 +984,7 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
                 let blocked = if periodic {
                     cache.block_periodic(&candidate, self.radius_squared, &periods)
                 } else if near_origin {
-                    cache.block_relative(&offset_in_r)
+                    false
                 } else {
                     cache.block(&candidate, self.radius_squared)
                 };

@@ -5,6 +5,7 @@
 
 mod shell;
 mod tables;
+mod wide;
 
 use tables::{
     TWO_POW_M32, angle_direction, angle_directions, cos_sin, cube_entry, cube_root_near, cube_step,
@@ -286,12 +287,18 @@ fn place_3d<const N: usize>(d: &mut [f64; N], rho: f64, z: f64, c: f64, s: f64) 
 /// active point, so offsets left over at the end of a pick serve the next
 /// one: the offsets used are the generator's draws in order, and only the
 /// interleaving with the pick draws differs from drawing them one by one.
+///
+/// A wide batch (the batch sampler's, 2-D and 3-D) draws its offsets in
+/// `f32` in units of `r` (`wide.rs`), and an offset is that widened and
+/// scaled by `r` when a candidate needs it; every other batch draws in
+/// `f64` and keeps an `f32` copy in units of `r` for the quick check.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct OffsetBatch<const N: usize, const WIDE_IF_DIRECT: bool = false> {
+    /// The offsets drawn in `f64` (not by a wide batch).
     offsets: [[f64; N]; WIDE],
-    /// The same offsets in units of `r`, as `f32`: the quick cache check's
+    /// The offsets in units of `r`, as `f32`: the quick cache check's
     /// candidate position relative to the active point (see
-    /// `ConflictCache::block_relative`), computed here a batch at a time.
+    /// `ConflictCache::block_relative`).
     units: [[f32; N]; WIDE],
     used: usize,
     /// In odd dimensions from 5-D up, the tries kept and not yet used.
@@ -311,7 +318,8 @@ const AHEAD: usize = 8;
 /// four times the independent chains in one vector loop
 /// (`docs/performance-journal.md`, "Offsets drawn 8 ahead"). The same 32
 /// drawn as four fills of 8 gained next to nothing in 3-D, so the width of
-/// the loop is what pays, not fewer refills.
+/// the loop is what pays, not fewer refills. (They are drawn in `f32`
+/// since: `wide.rs`.)
 const WIDE: usize = 32;
 
 impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> {
@@ -342,11 +350,53 @@ impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> 
         sampler: &CandidateSampler<N>,
         rng: &mut R,
     ) -> ([f64; N], [f32; N]) {
+        let (j, unit) = self.next_unit(sampler, rng);
+        (self.offset(j, sampler), unit)
+    }
+
+    /// The next offset's place in the batch and the offset in units of `r`
+    /// as `f32`, drawing a batch more when all are used: what the quick
+    /// check needs. The offset itself is [`Self::offset`] of that place,
+    /// asked only for the candidates the check lets through.
+    #[inline(always)]
+    pub(crate) fn next_unit<R: Rng + ?Sized>(
+        &mut self,
+        sampler: &CandidateSampler<N>,
+        rng: &mut R,
+    ) -> (usize, [f32; N]) {
         if self.used >= Self::LEN {
-            if Self::LEN == WIDE {
-                // 2-D or 3-D, by `LEN`.
-                sampler.fill_direct_annulus(rng, &mut self.offsets);
-            } else if let Some(fill) = self.offsets.as_chunks_mut::<AHEAD>().0.first_mut() {
+            self.refill(sampler, rng);
+        }
+        let j = self.used;
+        self.used += 1;
+        (j, self.units.get(j).copied().unwrap_or([f32::NAN; N]))
+    }
+
+    /// Offset `j` of the batch: a wide batch's `f32` draw widened and
+    /// scaled by `r` (so `j`'s unit is exactly this offset over `r`, to
+    /// the product's rounding), else the `f64` draw.
+    #[inline(always)]
+    pub(crate) fn offset(&self, j: usize, sampler: &CandidateSampler<N>) -> [f64; N] {
+        if Self::LEN == WIDE {
+            let unit = self.units.get(j).copied().unwrap_or([f32::NAN; N]);
+            let mut offset = [0.0; N];
+            for (o, &u) in offset.iter_mut().zip(&unit) {
+                *o = f64::from(u) * sampler.radius;
+            }
+            offset
+        } else {
+            self.offsets.get(j).copied().unwrap_or([0.0; N])
+        }
+    }
+
+    /// Draws the next batch.
+    #[inline(always)]
+    fn refill<R: Rng + ?Sized>(&mut self, sampler: &CandidateSampler<N>, rng: &mut R) {
+        if Self::LEN == WIDE {
+            // 2-D or 3-D, by `LEN`.
+            wide::fill(rng, &mut self.units);
+        } else {
+            if let Some(fill) = self.offsets.as_chunks_mut::<AHEAD>().0.first_mut() {
                 if N <= 3 {
                     sampler.fill_direct_annulus(rng, fill);
                 } else {
@@ -364,12 +414,8 @@ impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> 
                     *u = v;
                 }
             }
-            self.used = 0;
         }
-        let offset = self.offsets.get(self.used).copied().unwrap_or([0.0; N]);
-        let unit = self.units.get(self.used).copied().unwrap_or([f32::NAN; N]);
-        self.used += 1;
-        (offset, unit)
+        self.used = 0;
     }
 }
 

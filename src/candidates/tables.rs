@@ -40,6 +40,25 @@ pub(super) const fn directions() -> [(f64, f64); 1 << TABLE_BITS] {
     table
 }
 
+/// [`DIRECTIONS`] rounded to `f32`, for the batch sampler's `f32` draws
+/// (`wide.rs`).
+pub(super) const DIRECTIONS_F32: [(f32, f32); 1 << TABLE_BITS] = {
+    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
+    let mut i = 0;
+    while i < table.len() {
+        #[expect(
+            clippy::indexing_slicing,
+            reason = "i < table.len() by the loop condition (compile time only)"
+        )]
+        let ((c, s), entry) = (DIRECTIONS[i], &mut table[i]);
+        #[expect(clippy::cast_possible_truncation, reason = "rounded to f32 on purpose")]
+        let rounded = (c as f32, s as f32);
+        *entry = rounded;
+        i += 1;
+    }
+    table
+};
+
 /// The unit direction at angle `2π · bits / 2³²`, without a branch: the top
 /// 8 bits pick a table entry, the other 24 a rotation by `δ < 2π/256`, whose
 /// cosine and sine short Taylor polynomials give to within 1e-17.
@@ -103,6 +122,26 @@ pub(super) fn rotate((c, s): (f64, f64), delta: f64) -> (f64, f64) {
 /// midpoint into `t = (a - a₀)/a₀`. Computed at compile time with basic
 /// arithmetic (Halley steps), so the same bits on every platform.
 pub(super) const CUBE_ROOTS: [(f64, f64); 1 << TABLE_BITS] = cube_roots();
+
+/// [`CUBE_ROOTS`] rounded to `f32`, the scale for a 16-bit step (`2⁸`
+/// times the 24-bit one, exactly), for the batch sampler's `f32` draws
+/// (`wide.rs`).
+pub(super) const CUBE_ROOTS_F32: [(f32, f32); 1 << TABLE_BITS] = {
+    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
+    let mut i = 0;
+    while i < table.len() {
+        #[expect(
+            clippy::indexing_slicing,
+            reason = "i < table.len() by the loop condition (compile time only)"
+        )]
+        let ((root, scale), entry) = (CUBE_ROOTS[i], &mut table[i]);
+        #[expect(clippy::cast_possible_truncation, reason = "rounded to f32 on purpose")]
+        let rounded = (root as f32, (scale * 256.0) as f32);
+        *entry = rounded;
+        i += 1;
+    }
+    table
+};
 
 pub(super) const fn cube_roots() -> [(f64, f64); 1 << TABLE_BITS] {
     let mut table = [(0.0, 0.0); 1 << TABLE_BITS];

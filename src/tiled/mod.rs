@@ -918,21 +918,23 @@ impl<R: Rng> Pixels<R> {
             && y1 - parent[1] > m;
         let mut state = self.candidates.start(&mut self.rng);
         for _ in 0..self.attempts {
-            let (offset, offset_in_r) = if ahead {
-                self.ahead.next(&self.candidates, &mut self.rng)
+            let offset = if ahead {
+                let (j, offset_in_r) = self.ahead.next_unit(&self.candidates, &mut self.rng);
+                // The quick check first, as the batch sampler does: most
+                // candidates fail it, and it does not depend on the
+                // rectangle (the same decisions in either order).
+                if near_origin && cache.block_relative(&offset_in_r) {
+                    continue;
+                }
+                self.ahead.offset(j, &self.candidates)
             } else {
-                (self.candidates.offset(&mut self.rng, &mut state), [0.0; 2])
+                self.candidates.offset(&mut self.rng, &mut state)
             };
             let c = add(parent, &offset);
             if !(interior || (c[0] >= x0 && c[0] < x1 && c[1] >= y0 && c[1] < y1)) {
                 continue;
             }
-            let blocked = if near_origin {
-                cache.block_relative(&offset_in_r)
-            } else {
-                cache.block(&c, self.radius_squared)
-            };
-            if blocked {
+            if !near_origin && cache.block(&c, self.radius_squared) {
                 continue;
             }
             let (key, hit) = self.window.conflict(&c);
