@@ -42,22 +42,29 @@ pub(super) const fn directions() -> [(f64, f64); 1 << TABLE_BITS] {
 
 /// [`DIRECTIONS`] rounded to `f32`, for the batch sampler's `f32` draws
 /// (`wide.rs`).
-pub(super) const DIRECTIONS_F32: [(f32, f32); 1 << TABLE_BITS] = {
-    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
+pub(super) const DIRECTIONS_F32: [(f32, f32); 1 << TABLE_BITS] = rounded(&DIRECTIONS, 1.0);
+
+/// `table` rounded to `f32`, each entry's second value first times
+/// `second_scale` (a power of two, so exactly).
+const fn rounded(
+    table: &[(f64, f64); 1 << TABLE_BITS],
+    second_scale: f64,
+) -> [(f32, f32); 1 << TABLE_BITS] {
+    let mut out = [(0.0, 0.0); 1 << TABLE_BITS];
     let mut i = 0;
-    while i < table.len() {
+    while i < out.len() {
         #[expect(
             clippy::indexing_slicing,
-            reason = "i < table.len() by the loop condition (compile time only)"
+            reason = "i < out.len() == table.len() by the loop condition (compile time only)"
         )]
-        let ((c, s), entry) = (DIRECTIONS[i], &mut table[i]);
+        let ((a, b), entry) = (table[i], &mut out[i]);
         #[expect(clippy::cast_possible_truncation, reason = "rounded to f32 on purpose")]
-        let rounded = (c as f32, s as f32);
-        *entry = rounded;
+        let pair = (a as f32, (b * second_scale) as f32);
+        *entry = pair;
         i += 1;
     }
-    table
-};
+    out
+}
 
 /// The unit direction at angle `2π · bits / 2³²`, without a branch: the top
 /// 8 bits pick a table entry, the other 24 a rotation by `δ < 2π/256`, whose
@@ -126,22 +133,7 @@ pub(super) const CUBE_ROOTS: [(f64, f64); 1 << TABLE_BITS] = cube_roots();
 /// [`CUBE_ROOTS`] rounded to `f32`, the scale for a 16-bit step (`2⁸`
 /// times the 24-bit one, exactly), for the batch sampler's `f32` draws
 /// (`wide.rs`).
-pub(super) const CUBE_ROOTS_F32: [(f32, f32); 1 << TABLE_BITS] = {
-    let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
-    let mut i = 0;
-    while i < table.len() {
-        #[expect(
-            clippy::indexing_slicing,
-            reason = "i < table.len() by the loop condition (compile time only)"
-        )]
-        let ((root, scale), entry) = (CUBE_ROOTS[i], &mut table[i]);
-        #[expect(clippy::cast_possible_truncation, reason = "rounded to f32 on purpose")]
-        let rounded = (root as f32, (scale * 256.0) as f32);
-        *entry = rounded;
-        i += 1;
-    }
-    table
-};
+pub(super) const CUBE_ROOTS_F32: [(f32, f32); 1 << TABLE_BITS] = rounded(&CUBE_ROOTS, 256.0);
 
 pub(super) const fn cube_roots() -> [(f64, f64); 1 << TABLE_BITS] {
     let mut table = [(0.0, 0.0); 1 << TABLE_BITS];
