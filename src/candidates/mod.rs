@@ -1,11 +1,14 @@
 //! Where candidates are thrown around an active point: the candidate
 //! distributions, the sampler that draws them, and offsets drawn eight
-//! ahead ([`OffsetBatch`]). The tables behind them are in [`tables`]; the
+//! ahead ([`OffsetBatch`]; 32 in `f32` for the batch sampler's 2-D and
+//! 3-D, in [`wide`]). The tables behind them are in [`tables`]; the
 //! annulus in odd dimensions from 5-D up, drawn ahead, in [`shell`].
 
 mod shell;
 mod tables;
 mod wide;
+
+use wide::WIDE;
 
 use tables::{
     TWO_POW_M32, angle_direction, angle_directions, cos_sin, cube_entry, cube_root_near, cube_step,
@@ -308,19 +311,6 @@ pub(crate) struct OffsetBatch<const N: usize, const WIDE_IF_DIRECT: bool = false
 /// Offsets a batch draws at once by default: eight lanes to each vector
 /// step.
 const AHEAD: usize = 8;
-
-/// Offsets a wide batch draws at once (`WIDE_IF_DIRECT`: the batch
-/// sampler in 2-D and 3-D), and the room every batch has: 32 × `N`
-/// coordinates and their `f32` copies, 24 KiB at the largest `N` that
-/// reads ahead (63), where eight would do; the type cannot size itself by
-/// `N` on stable Rust. On an AMD EPYC host (2026-11-29) 1 M points
-/// took 10 % less time in 3-D and 3 % less in 2-D with 32 than with 8:
-/// four times the independent chains in one vector loop
-/// (`docs/performance-journal.md`, "Offsets drawn 8 ahead"). The same 32
-/// drawn as four fills of 8 gained next to nothing in 3-D, so the width of
-/// the loop is what pays, not fewer refills. (They are drawn in `f32`
-/// since: `wide.rs`.)
-const WIDE: usize = 32;
 
 impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> {
     /// Offsets a refill draws: [`WIDE`] where `WIDE_IF_DIRECT` (the batch
