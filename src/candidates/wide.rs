@@ -79,7 +79,7 @@ pub(super) fn fill<R: Rng + ?Sized, const N: usize>(rng: &mut R, units: &mut [[f
             let rho = cube_root(a);
             #[expect(clippy::cast_possible_truncation, reason = "the word's low half")]
             let h = height(a as u32);
-            let ring = rho * (1.0 - h * h).sqrt();
+            let ring = rho * ring(h);
             let (c, s) = direction((b >> 32) as u32);
             (*x, *y, *z) = (ring * c, ring * s, rho * h);
         }
@@ -117,6 +117,15 @@ fn cube_root(w: u64) -> f32 {
     let t = step as f32 * scale;
     let q = (1.0 / 3.0) + t * ((-1.0 / 9.0) + t * ((5.0 / 81.0) + t * (-10.0 / 243.0)));
     root + root * (t * q)
+}
+
+/// `√(1 - h²)`, the ring's radius at height `h`, as `(1 - h)(1 + h)`: both
+/// factors are exact (`h` is a multiple of `2⁻²³`), so only the product
+/// and the root round, where `1 - h·h` would lose most of its digits near
+/// the poles.
+#[inline(always)]
+fn ring(h: f32) -> f32 {
+    ((1.0 - h) * (1.0 + h)).sqrt()
 }
 
 /// A height uniform in `[-1, 1)` from the top 24 bits of `bits`, exactly.
@@ -193,6 +202,24 @@ mod tests {
                 "{w:#x}: height {h}"
             );
         }
+    }
+
+    #[test]
+    fn rings_keep_their_digits_at_the_poles() {
+        // Heights a few steps from either pole, and some in between.
+        let steps = (1..64).chain([1 << 10, 1 << 20, 1 << 22]);
+        for k in steps {
+            for sign in [-1.0f32, 1.0] {
+                let h = sign * (1.0 - k as f32 / 8_388_608.0);
+                let want = (1.0 - f64::from(h).powi(2)).sqrt();
+                let got = f64::from(ring(h));
+                assert!(
+                    (got / want - 1.0).abs() < 3e-7,
+                    "h = {h}: {got} against {want}"
+                );
+            }
+        }
+        assert_eq!(ring(-1.0), 0.0, "the south pole");
     }
 
     /// Draws batches from the generator and returns the offsets' lengths.
