@@ -179,13 +179,13 @@ impl<const N: usize> CandidateSampler<N> {
         self.volume_radius_from(cube_entry(bits), cube_step(bits))
     }
 
-    /// [`Self::volume_radius`] for `L` draws, step by step over all of
+    /// [`Self::volume_radius`] for [`AHEAD`] draws, step by step over all of
     /// them (the look-ups, then the arithmetic), bit for bit the same.
     #[inline(always)]
-    fn volume_radii<const L: usize>(&self, bits: &[u32; L]) -> [f64; L] {
+    fn volume_radii(&self, bits: &[u32; AHEAD]) -> [f64; AHEAD] {
         let entries = lanes(bits, cube_entry);
         let steps = lanes(bits, cube_step);
-        let mut rho = [0.0; L];
+        let mut rho = [0.0; AHEAD];
         for ((rho, &entry), &d) in rho.iter_mut().zip(&entries).zip(&steps) {
             *rho = self.volume_radius_from(entry, d);
         }
@@ -199,23 +199,19 @@ impl<const N: usize> CandidateSampler<N> {
         self.radius * cube_root_near(root, step * scale)
     }
 
-    /// `L` offsets of [`Self::direct_annulus`], bit for bit: the
+    /// [`AHEAD`] offsets of [`Self::direct_annulus`], bit for bit: the
     /// generator words are drawn first, in the same order, then each step
     /// runs over all offsets at once, which the compiler turns into vector
     /// instructions (the arithmetic per offset is the same, so are the
     /// results).
     #[inline(always)]
-    fn fill_direct_annulus<R: Rng + ?Sized, const L: usize>(
-        &self,
-        rng: &mut R,
-        out: &mut [[f64; N]; L],
-    ) {
+    fn fill_direct_annulus<R: Rng + ?Sized>(&self, rng: &mut R, out: &mut [[f64; N]; AHEAD]) {
         #[expect(
             clippy::cast_possible_truncation,
             reason = "splitting words into their 32-bit halves"
         )]
         if N == 2 {
-            let mut words = [0u64; L];
+            let mut words = [0u64; AHEAD];
             for w in &mut words {
                 *w = rng.next_u64();
             }
@@ -225,8 +221,8 @@ impl<const N: usize> CandidateSampler<N> {
                 place_2d(d, rho, c, s);
             }
         } else {
-            let mut x = [0u64; L];
-            let mut w = [0u64; L];
+            let mut x = [0u64; AHEAD];
+            let mut w = [0u64; AHEAD];
             for (x, w) in x.iter_mut().zip(&mut w) {
                 *x = rng.next_u64();
                 *w = rng.next_u64();
@@ -298,7 +294,7 @@ fn place_3d<const N: usize>(d: &mut [f64; N], rho: f64, z: f64, c: f64, s: f64) 
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct OffsetBatch<const N: usize, const WIDE_IF_DIRECT: bool = false> {
     /// The offsets drawn in `f64` (not by a wide batch).
-    offsets: [[f64; N]; WIDE],
+    offsets: [[f64; N]; AHEAD],
     /// The offsets in units of `r`, as `f32`: the quick cache check's
     /// candidate position relative to the active point (see
     /// `ConflictCache::block_relative`).
@@ -325,7 +321,7 @@ impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> 
 
     pub(crate) const fn new() -> Self {
         Self {
-            offsets: [[0.0; N]; WIDE],
+            offsets: [[0.0; N]; AHEAD],
             units: [[0.0; N]; WIDE],
             used: Self::LEN,
             queue: shell::Queue::new(),
@@ -386,15 +382,13 @@ impl<const N: usize, const WIDE_IF_DIRECT: bool> OffsetBatch<N, WIDE_IF_DIRECT> 
             // 2-D or 3-D, by `LEN`.
             wide::fill(rng, &mut self.units);
         } else {
-            if let Some(fill) = self.offsets.as_chunks_mut::<AHEAD>().0.first_mut() {
-                if N <= 3 {
-                    sampler.fill_direct_annulus(rng, fill);
-                } else {
-                    self.queue.fill(rng, sampler.radius, fill);
-                }
+            if N <= 3 {
+                sampler.fill_direct_annulus(rng, &mut self.offsets);
+            } else {
+                self.queue.fill(rng, sampler.radius, &mut self.offsets);
             }
             let inv_radius = 1.0 / sampler.radius;
-            for (unit, offset) in self.units.iter_mut().zip(&self.offsets).take(Self::LEN) {
+            for (unit, offset) in self.units.iter_mut().zip(&self.offsets) {
                 for (u, &o) in unit.iter_mut().zip(offset) {
                     #[expect(
                         clippy::cast_possible_truncation,
@@ -638,13 +632,9 @@ mod tests {
     #[test]
     fn drawn_ahead_equals_drawn_one_by_one() {
         fn check<const N: usize>(radius: f64) {
-            check_lanes::<N, AHEAD>(radius);
-            check_lanes::<N, WIDE>(radius);
-        }
-        fn check_lanes<const N: usize, const L: usize>(radius: f64) {
             let sampler = CandidateSampler::<N>::new(Candidates::Annulus, radius, 30);
             let (mut one, mut all) = (seeded_rng(9), seeded_rng(9));
-            let mut ahead = [[0.0; N]; L];
+            let mut ahead = [[0.0; N]; AHEAD];
             for _ in 0..100 {
                 sampler.fill_direct_annulus(&mut all, &mut ahead);
                 for got in ahead {

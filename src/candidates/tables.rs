@@ -4,6 +4,8 @@
 //! binomial series. Compile-time tables and correctly rounded arithmetic
 //! only, so every platform draws the same bits.
 
+use super::AHEAD;
+
 pub(super) const TWO_POW_M32: f64 = 1.0 / 4_294_967_296.0;
 
 /// Entries in [`DIRECTIONS`] and [`CUBE_ROOTS`]; the top `log2` of a
@@ -74,14 +76,14 @@ pub(super) fn angle_direction(bits: u32) -> (f64, f64) {
     rotate(table_direction(bits), rotation(bits))
 }
 
-/// [`angle_direction`] for `L` angles at once, step by step over all
+/// [`angle_direction`] for [`AHEAD`] angles at once, step by step over all
 /// of them (the table look-ups, then the polynomials), bit for bit the same.
 #[inline(always)]
-pub(super) fn angle_directions<const L: usize>(bits: &[u32; L]) -> ([f64; L], [f64; L]) {
+pub(super) fn angle_directions(bits: &[u32; AHEAD]) -> ([f64; AHEAD], [f64; AHEAD]) {
     let table = super::lanes(bits, table_direction);
     let delta = super::lanes(bits, rotation);
-    let mut c = [0.0; L];
-    let mut s = [0.0; L];
+    let mut c = [0.0; AHEAD];
+    let mut s = [0.0; AHEAD];
     for (((c, s), &t), &d) in c.iter_mut().zip(&mut s).zip(&table).zip(&delta) {
         (*c, *s) = rotate(t, d);
     }

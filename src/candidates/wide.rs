@@ -25,10 +25,10 @@ use rand::Rng;
 use super::tables::{CUBE_ROOTS_F32, DIRECTIONS_F32, TABLE_BITS};
 
 /// Offsets a wide batch draws at once (`WIDE_IF_DIRECT`: the batch
-/// sampler in 2-D and 3-D), and the room every batch has: 32 × `N`
-/// coordinates and their `f32` copies, 24 KiB at the largest `N` that
-/// reads ahead (63), where eight would do; the type cannot size itself by
-/// `N` on stable Rust. On an AMD EPYC host (2026-11-29) 1 M points
+/// sampler in 2-D and 3-D), and the room every batch has for its `f32`
+/// offsets: 32 × `N` coordinates, 8 KiB at the largest `N` that reads
+/// ahead (63), where eight would do; the type cannot size itself by `N`
+/// on stable Rust. On an AMD EPYC host (2026-11-29) 1 M points
 /// took 10 % less time in 3-D and 3 % less in 2-D with 32 than with 8:
 /// four times the independent chains in one vector loop
 /// (`docs/performance-journal.md`, "Offsets drawn 8 ahead"). The same 32
