@@ -901,10 +901,11 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
     /// `B` recent conflicts sized for the dimension.
     #[inline(always)]
     fn grow<T: NeighbourGrid<N>>(self, grid: &mut T) -> Option<[f64; N]> {
-        // How many conflicts a pick remembers: its active point's nearest
-        // neighbours, then whatever the grid finds. 8 in 2-D (the 5×5
-        // stencil rarely holds more); 16 from 3-D up (125 cells hold ~14).
-        if N <= 2 {
+        // How many conflicts a pick remembers: its active point's
+        // neighbours, then whatever the grid finds. 16: the 2-D seed's 44
+        // cells (`grid/dense.rs`, `wide_seed`) and the 3-D stencil's 125
+        // hold about 14 points; 8 in 1-D (the stencil holds at most 4).
+        if N <= 1 {
             self.grow_cached::<T, 8>(grid)
         } else {
             self.grow_cached::<T, 16>(grid)

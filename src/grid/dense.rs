@@ -60,9 +60,12 @@ pub(crate) struct Dense<const N: usize> {
     /// cell can reach. On average 16 cells instead of 25 in 2-D, 91
     /// instead of 125 in 3-D, 504 instead of 841 in 4-D.
     parts: Vec<Stencil>,
-    /// The full stencil without the centre cell, in address order (up to
-    /// 3-D).
+    /// The cells the seed reads, in address order: in 2-D the cells within
+    /// `2r` of the centre cell ([`wide_seed`]), in 1-D and 3-D the full
+    /// stencil; never the centre cell; none from 4-D.
     seed_offsets: Vec<isize>,
+    /// Whether the seed is [`wide_seed`]'s (2-D, reach 2).
+    wide_seed: bool,
     /// Heap bytes of the stencils, kept for [`NeighbourGrid::bytes`].
     stencil_bytes: u64,
     periods: [f64; N],
@@ -99,7 +102,12 @@ impl<const N: usize> Dense<N> {
             radius,
         };
         let full = Stencil::new(&shape, &stride, &[0; N], 1)?;
-        let mut seed_offsets: Vec<isize> = if N <= 3 {
+        let wide = <&[usize; 2]>::try_from(stride.as_slice())
+            .ok()
+            .filter(|_| plan.reach.iter().all(|&p| p == 2));
+        let mut seed_offsets: Vec<isize> = if let Some(stride) = wide {
+            wide_seed(stride)?
+        } else if N <= 3 {
             full.offsets.iter().copied().filter(|&o| o != 0).collect()
         } else {
             Vec::new()
@@ -144,6 +152,7 @@ impl<const N: usize> Dense<N> {
             full,
             parts: stencils,
             seed_offsets,
+            wide_seed: wide.is_some(),
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
             radius_squared: radius * radius,
@@ -313,8 +322,10 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
     }
 
-    /// The points of the stencil around `p` (its nearest neighbours, the
-    /// ones that block most of its annulus), until the cache is full. Two
+    /// The points around `p` (its nearest neighbours, the ones that block
+    /// most of its annulus), until the cache is full: in 2-D those of the
+    /// cells within `2r` ([`wide_seed`]), in 1-D and 3-D those of its
+    /// search stencil. Two
     /// passes, so that the memory loads go out together: the cells in
     /// address order (each row of the stencil is one or two cache lines),
     /// collecting the indices of occupied cells without a branch; then
@@ -336,7 +347,20 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
 
     #[inline(always)]
     fn prefetch(&self, p: &[f64; N]) {
-        self.prefetch_stencil(self.base(&self.cell_of(p)), &self.full);
+        let base = self.base(&self.cell_of(p));
+        match self.stride.get(1) {
+            // The seed's 7 rows (its outer ones are beyond the stencil's
+            // 5): on an AMD EPYC host 5 % less time in 2-D than the
+            // stencil's rows (`docs/performance-journal.md`, "The 2-D seed
+            // out to 2r").
+            Some(&row) if self.wide_seed => {
+                for [first, last] in wide_seed_rows(row) {
+                    crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(first));
+                    crate::prefetch::prefetch(&self.cells, base.wrapping_add_signed(last));
+                }
+            }
+            _ => self.prefetch_stencil(base, &self.full),
+        }
     }
 
     fn bytes(&self) -> u64 {
@@ -379,6 +403,64 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
         true
     }
+}
+
+/// The 2-D seed's cells, as linear offsets for `stride`: the 7×7 cells
+/// around the centre cell less its four corners and the centre, 44 cells,
+/// which are those within `2r` of the centre cell where cells are `r/√2`
+/// wide (the corners are exactly `2r` away); `None` if their memory
+/// cannot be had.
+///
+/// Why `2r`, not the search's `r`: a candidate lies `r` to `2r` from its
+/// active point, so what can turn it away lies within `3r`, and the search
+/// stencil (the cells within `r`) leaves out the points `2r` to `3r` away,
+/// behind about two of a point's three grid searches. These cells hold
+/// about 14 points, which the cache's 16 slots take, checked in two
+/// vectors of eight. On an AMD EPYC host 1 M points took 15 % less time
+/// than with the stencil's 20 cells and 8 slots
+/// (`docs/performance-journal.md`, "The 2-D seed out to 2r"); more cells
+/// (the 9×9 within `3r`), fewer (36), or 24 slots were slower.
+///
+/// For grids padded by the search's reach of 2 cells (the streaming
+/// window's too): offsets past the padding land on a padding cell of the
+/// next or previous row, or on no cell at all (`get` finds nothing);
+/// either hands the cache nothing or a real point, and the cache keeps
+/// any real point without changing a decision. The 44 offsets take 352
+/// bytes, within the 16 bytes a cell of the search's 25-cell window that
+/// the grid's budget charges for the seed ([`stencil_bytes_per_cell`]).
+pub(crate) fn wide_seed(&[s0, s1]: &[usize; 2]) -> Option<Vec<isize>> {
+    const REACH: isize = WIDE_SEED_REACH;
+    let (s0, s1) = (isize::try_from(s0).ok()?, isize::try_from(s1).ok()?);
+    let mut offsets = Vec::new();
+    offsets.try_reserve_exact(44).ok()?;
+    for dy in -REACH..=REACH {
+        for dx in -REACH..=REACH {
+            let corner = dx.abs() == REACH && dy.abs() == REACH;
+            if (dx, dy) != (0, 0) && !corner {
+                offsets.push(dx * s0 + dy * s1);
+            }
+        }
+    }
+    Some(offsets)
+}
+
+/// How far [`wide_seed`] reaches from the centre cell on each axis.
+const WIDE_SEED_REACH: isize = 3;
+
+/// The first and last offset of each row of [`wide_seed`]'s cells, in a
+/// grid whose rows are `row` apart (axis 0's stride is 1): what the next
+/// pick's prefetch asks for. Its centre row counts the centre cell, which
+/// the seed leaves out.
+fn wide_seed_rows(row: usize) -> impl Iterator<Item = [isize; 2]> {
+    let row = isize::try_from(row).unwrap_or(0);
+    (-WIDE_SEED_REACH..=WIDE_SEED_REACH).map(move |dy| {
+        let reach = if dy.abs() == WIDE_SEED_REACH {
+            WIDE_SEED_REACH - 1
+        } else {
+            WIDE_SEED_REACH
+        };
+        [dy * row - reach, dy * row + reach]
+    })
 }
 
 /// The cell of `p` in a grid whose cells start at `lo`, are `1/inv_side`
@@ -753,17 +835,70 @@ mod tests {
     #[test]
     fn seed_gathers_the_nearest_neighbours() {
         let mut g = dense(&Domain::from_extent([1.0, 1.0]).unwrap(), 0.1);
-        // A point, two neighbours in its stencil, one far away.
-        for p in [[0.5, 0.5], [0.6, 0.5], [0.5, 0.62], [0.9, 0.9]] {
+        // A point, two neighbours in its stencil, one 1.9r away (beyond the
+        // stencil, within the seed's 2r), two further.
+        for p in [
+            [0.5, 0.5],
+            [0.6, 0.5],
+            [0.5, 0.62],
+            [0.31, 0.5],
+            [0.5, 0.25],
+            [0.9, 0.9],
+        ] {
             assert!(g.insert(p), "insert {p:?}");
         }
         let mut seeded = Vec::new();
         g.seed(&[0.5, 0.5], 8, |q| seeded.push(*q));
         seeded.sort_by(|a, b| a.partial_cmp(b).unwrap());
-        assert_eq!(seeded, [[0.5, 0.62], [0.6, 0.5]], "the two neighbours only");
+        assert_eq!(
+            seeded,
+            [[0.31, 0.5], [0.5, 0.62], [0.6, 0.5]],
+            "the three neighbours only"
+        );
         let mut one = Vec::new();
         g.seed(&[0.5, 0.5], 1, |q| one.push(*q));
         assert_eq!(one.len(), 1, "up to the limit");
+    }
+
+    /// The 2-D seed's cells: the 7×7 around the centre cell less the
+    /// corners and the centre, which hold the whole search stencil.
+    #[test]
+    fn the_wide_seed_reads_7_by_7_cells_less_the_corners() {
+        let columns = 100;
+        let seed = wide_seed(&[1, columns]).unwrap();
+        assert_eq!(seed.len(), 44, "{seed:?}");
+        let columns = isize::try_from(columns).unwrap();
+        for dy in -4..=4_isize {
+            for dx in -4..=4_isize {
+                let inside = dx.abs() <= 3 && dy.abs() <= 3;
+                let corner = dx.abs() == 3 && dy.abs() == 3;
+                let o = dx + dy * columns;
+                assert_eq!(
+                    seed.contains(&o),
+                    inside && !corner && o != 0,
+                    "({dx}, {dy})"
+                );
+            }
+        }
+        let r = 1.0;
+        let shape = StencilShape {
+            reach: [2; 2],
+            side: [r * core::f64::consts::FRAC_1_SQRT_2 * (1.0 - 1e-9); 2],
+            eta: 1e-9,
+            radius: r,
+        };
+        let full = Stencil::new(&shape, &[1, 100], &[0, 0], 1).unwrap();
+        assert!(full.offsets.iter().all(|o| *o == 0 || seed.contains(o)));
+        // Its rows, as the prefetch asks for them: the same cells and the
+        // centre.
+        let mut in_rows: Vec<isize> = wide_seed_rows(100)
+            .flat_map(|[first, last]| first..=last)
+            .filter(|&o| o != 0)
+            .collect();
+        in_rows.sort_unstable();
+        let mut sorted = seed.clone();
+        sorted.sort_unstable();
+        assert_eq!(in_rows, sorted);
     }
 
     #[test]

@@ -15,7 +15,7 @@
 //! reaches its end, the live rows are copied back to its start. That costs
 //! one row copy per row of the image, amortised.
 
-use crate::grid::dense::{Stencil, StencilShape, locate, parts};
+use crate::grid::dense::{Stencil, StencilShape, locate, parts, wide_seed};
 use crate::vector::distance_squared;
 
 /// An empty cell: a point at infinity, so the scan never branches on
@@ -26,8 +26,9 @@ pub(crate) const FAR: [f64; 2] = [f64::INFINITY; 2];
 /// are finite).
 const FAR_X_BITS: u64 = f64::INFINITY.to_bits();
 
-/// How many occupied cells [`RollingGrid::seed`] gathers at most.
-const SEED_MAX: usize = 16;
+/// How many occupied cells [`RollingGrid::seed`] gathers at most (its 44
+/// cells hold about 14 points).
+const SEED_MAX: usize = 32;
 
 /// Cells scanned together before branching on a conflict (as the batch
 /// grid's `SCAN_CHUNK`).
@@ -102,8 +103,14 @@ impl RollingGrid {
         };
         let stride = [1, columns];
         let full = Stencil::new(&shape, &stride, &[0, 0], 1)?;
-        let mut seed_offsets: Vec<isize> =
-            full.offsets.iter().copied().filter(|&o| o != 0).collect();
+        // The cells within `2r`, as the batch grid's 2-D seed, where the
+        // reach is 2 (always, but for a raster of one or two cells a side,
+        // or cells narrower than `r/√2`).
+        let mut seed_offsets: Vec<isize> = if reach == 2 {
+            wide_seed(&stride)?
+        } else {
+            full.offsets.iter().copied().filter(|&o| o != 0).collect()
+        };
         seed_offsets.sort_unstable();
         let seed_runs = runs(&seed_offsets);
         // Within the L2 cache, a pick's cells are near at hand already and
@@ -293,7 +300,9 @@ impl RollingGrid {
         let mut n = 0;
         for &(first, len) in &self.seed_runs {
             let start = base.wrapping_add_signed(first);
-            // Always inside: the padding is as wide as the reach.
+            // A run past the padding (the seed reads 3 cells out, the
+            // padding is 2) reads another row's cells or none: real points
+            // or nothing, which the cache takes without changing a decision.
             let Some(run) = self.cells.get(start..start.saturating_add(len)) else {
                 continue;
             };
@@ -476,9 +485,11 @@ mod tests {
 
     /// Over many slides, so that the rows are copied back to the array's
     /// start many times: every search answers as a brute-force scan of the
-    /// stored points does; a seed hands on only stored points; a gathered
-    /// row holds exactly its points; and a row slid past leaves nothing
-    /// behind.
+    /// stored points does; a seed hands on only points the grid was given,
+    /// none more than 3 cells from the candidate's on either axis (it may
+    /// read rows the live ones no longer need, which the array keeps until
+    /// it slides); a gathered row holds exactly its points; and a row slid
+    /// past leaves nothing behind.
     #[test]
     fn the_window_answers_as_a_brute_force_scan_as_it_slides() {
         let (radius, side, reach, live_rows) = (0.39, 0.25, 2, 9);
@@ -499,6 +510,7 @@ mod tests {
         let row_of = |p: &[f64; 2]| (p[1] / side).floor() as usize;
         let mut rng = seeded_rng(7);
         let mut stored: Vec<[f64; 2]> = Vec::new();
+        let mut given: Vec<[f64; 2]> = Vec::new();
         let (mut found, mut kept) = (0, 0);
         for first in 0..1_500 {
             grid.slide_to(first, live_rows);
@@ -518,7 +530,18 @@ mod tests {
                 assert_eq!(key, grid.key(&c));
                 let mut seeds = Vec::new();
                 grid.seed(key, SEED_MAX, |q| seeds.push(*q));
-                assert!(seeds.iter().all(|q| stored.contains(q)), "{seeds:?}");
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    reason = "cells of the raster: small numbers"
+                )]
+                let cell = |p: &[f64; 2]| p.map(|x| (x / side).floor() as i64);
+                let [cx, cy] = cell(&c);
+                assert!(
+                    seeds.iter().all(|q| given.contains(q)
+                        && (cell(q)[0] - cx).abs() <= 3
+                        && (cell(q)[1] - cy).abs() <= 3),
+                    "{seeds:?} around {c:?}"
+                );
                 if near {
                     found += 1;
                 } else {
@@ -529,6 +552,7 @@ mod tests {
                     }
                     kept += 1;
                     stored.push(c);
+                    given.push(c);
                 }
             }
             // The pixel row at the top of the live rows, gathered.
@@ -565,9 +589,10 @@ mod tests {
     }
 
     /// The seed reads its cells a run at a time: the same cells, in the
-    /// same (address) order, as offset by offset.
+    /// same (address) order, as offset by offset: the batch grid's 2-D
+    /// seed (the cells within `2r`), which holds the whole search stencil.
     #[test]
-    fn seed_runs_cover_the_seed_stencil_in_address_order() {
+    fn seed_runs_cover_the_seed_cells_in_address_order() {
         let side = 0.39 * core::f64::consts::FRAC_1_SQRT_2;
         let grid = RollingGrid::new((40, 40), 20, side, (0.39, 2, 1e-9), false).unwrap();
         let cells: Vec<isize> = grid
@@ -584,9 +609,13 @@ mod tests {
             };
             Stencil::new(&shape, &[1, grid.columns], &[0, 0], 1).unwrap()
         };
-        let mut expected: Vec<isize> = full.offsets.iter().copied().filter(|&o| o != 0).collect();
+        let mut expected = wide_seed(&[1, grid.columns]).unwrap();
         expected.sort_unstable();
-        assert!(expected.len() > 8, "{expected:?}");
+        assert_eq!(expected.len(), 44, "{expected:?}");
         assert_eq!(cells, expected);
+        assert!(
+            full.offsets.iter().all(|o| *o == 0 || expected.contains(o)),
+            "the search stencil is inside"
+        );
     }
 }

@@ -903,8 +903,8 @@ impl<R: Rng> Pixels<R> {
         // test's margins (`ConflictCache::block_relative`).
         let small = parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
         let near_origin = ahead && small;
-        let mut cache = ConflictCache::<2, 8>::new(*parent, radius);
-        self.window.seed(cell, 8, |q| cache.push(q));
+        let mut cache = ConflictCache::<2, 16>::new(*parent, radius);
+        self.window.seed(cell, 16, |q| cache.push(q));
         // Far from the rectangle's sides (the usual case), no candidate can
         // leave it: skip the per-attempt test, as the batch sampler does
         // far from the box's faces. 2-D candidates lie within

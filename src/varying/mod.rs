@@ -464,8 +464,9 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
             {
                 levels.prefetch(&p, r);
             }
-            // A conflict cache sized for the dimension, as the fixed
-            // radius's: 8 slots in 2-D, 16 from 3-D up.
+            // A conflict cache sized for the dimension: 8 slots in 2-D
+            // (the fixed radius's 2-D seed reads out to `2r` and takes 16;
+            // this one's seed is the levels'), 16 from 3-D up.
             // The pick compiled for AVX2 where the processor has it
             // (`cpu.rs`): the same points.
             let step = if N <= 2 {
