@@ -902,10 +902,12 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
     #[inline(always)]
     fn grow<T: NeighbourGrid<N>>(self, grid: &mut T) -> Option<[f64; N]> {
         // How many conflicts a pick remembers: its active point's
-        // neighbours, then whatever the grid finds. 16: the 2-D seed's 44
-        // cells (`grid/dense.rs`, `wide_seed`) and the 3-D stencil's 125
-        // hold about 14 points; 8 in 1-D (the stencil holds at most 4).
-        if N <= 1 {
+        // neighbours, then whatever the grid finds. 16 where the seed holds
+        // about 14 points: the dense grid's 2-D seed (its 44 cells,
+        // `grid/dense.rs`, `wide_seed`) and the 3-D stencil's 125 cells.
+        // 8 in 1-D (the stencil holds at most 4) and in 2-D on the sparse
+        // grid, which seeds nothing (16 slots there cost 2–3 % more time).
+        if N <= 1 || (N == 2 && !T::WIDE_SEED) {
             self.grow_cached::<T, 8>(grid)
         } else {
             self.grow_cached::<T, 16>(grid)

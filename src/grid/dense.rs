@@ -306,6 +306,8 @@ pub(crate) fn for_each_image<const N: usize>(
 }
 
 impl<const N: usize> NeighbourGrid<N> for Dense<N> {
+    const WIDE_SEED: bool = true;
+
     #[inline(always)]
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let (cell, part) = self.locate(p);
