@@ -13,8 +13,10 @@
 //!
 //! It changes no decision: a remembered point is a real point, and
 //! "blocked" is said only when the grid's exact test would find it closer
-//! than `r` too (on toroidal domains by that very formula; on bounded ones
-//! by a quick `f32` test with a margin that covers its rounding); anything
+//! than `r` too (by a quick `f32` test with a margin that covers its
+//! rounding, on a torus against each point's image nearest the active
+//! point, which is never nearer than the toroidal distance; past
+//! [`NEAR_ORIGIN`] radii from the origin by the exact formula); anything
 //! else falls through to the full grid search. The output for a seed is the
 //! same with or without the cache.
 
@@ -62,16 +64,25 @@ impl<const N: usize, const B: usize> ConflictCache<N, B> {
         }
     }
 
-    /// `p - origin` in units of `r`, as `f32`.
+    /// `p - origin` in units of `r`, as `f32`; with `WRAP`, on each axis
+    /// with a period (`periods`, `0.0` for none) the difference to `p`'s
+    /// image nearest the origin.
     #[inline(always)]
-    fn relative(&self, p: &[f64; N]) -> [f32; N] {
+    fn relative<const WRAP: bool>(&self, p: &[f64; N], periods: &[f64; N]) -> [f32; N] {
         let mut out = [0.0; N];
-        for ((o, &x), &c) in out.iter_mut().zip(p).zip(&self.origin) {
+        for (((o, &x), &c), &l) in out.iter_mut().zip(p).zip(&self.origin).zip(periods) {
+            let mut d = x - c;
+            if WRAP && l > 0.0 {
+                // A whole number of periods off: -1, 0 or 1 for points
+                // in the box, so `k·l` is exact and `d - k·l` rounds
+                // once.
+                d -= (d / l).round() * l;
+            }
             #[expect(
                 clippy::cast_possible_truncation,
                 reason = "f32 on purpose: the quick test has a margin"
             )]
-            let v = ((x - c) * self.inv_radius) as f32;
+            let v = (d * self.inv_radius) as f32;
             *o = v;
         }
         out
@@ -80,8 +91,25 @@ impl<const N: usize, const B: usize> ConflictCache<N, B> {
     /// Remembers `q`, forgetting the oldest entry when full.
     #[inline(always)]
     pub(crate) fn push(&mut self, q: &[f64; N]) {
+        self.push_image::<false>(q, &[0.0; N]);
+    }
+
+    /// [`Self::push`] on a domain with periods (`0.0` for an axis
+    /// without): for the quick test ([`Self::block_relative`]), `q`'s
+    /// image nearest the origin. Its distance to a candidate is at least
+    /// their toroidal distance, so "surely closer than `r`" still means
+    /// the grid's toroidal test finds them closer; the image's difference
+    /// is off by under `2⁻²⁵·r` for coordinates and periods below
+    /// [`NEAR_ORIGIN`] radii, as [`Self::block_relative`] asks.
+    #[inline(always)]
+    pub(crate) fn push_periodic(&mut self, q: &[f64; N], periods: &[f64; N]) {
+        self.push_image::<true>(q, periods);
+    }
+
+    #[inline(always)]
+    fn push_image<const WRAP: bool>(&mut self, q: &[f64; N], periods: &[f64; N]) {
         let slot = self.next;
-        let near = self.relative(q);
+        let near = self.relative::<WRAP>(q, periods);
         let columns = self.coords.iter_mut().zip(&mut self.near);
         for ((column, column_near), (&x, &y)) in columns.zip(q.iter().zip(&near)) {
             if let (Some(c), Some(n)) = (column.get_mut(slot), column_near.get_mut(slot)) {
@@ -114,7 +142,7 @@ impl<const N: usize, const B: usize> ConflictCache<N, B> {
         if N > 64 {
             return self.block_periodic(p, radius_squared, &[0.0; N]);
         }
-        self.block_relative(&self.relative(p))
+        self.block_relative(&self.relative::<false>(p, &[0.0; N]))
     }
 
     /// [`Self::block`] for a candidate given by its position relative to
@@ -236,6 +264,68 @@ mod tests {
         }
         assert!(
             blocked > 200 && clear > 200,
+            "{blocked} blocked, {clear} clear"
+        );
+    }
+
+    /// On a torus, points remembered by their image nearest the active
+    /// point: the quick test on a candidate's offset blocks only what the
+    /// toroidal distance says is closer than `r`, and catches every point
+    /// well inside `r` when the period is wide enough that the image
+    /// nearest the active point is the one nearest the candidate. Active
+    /// points and remembered points anywhere in the box, near its faces
+    /// too, so that the images cross them.
+    #[test]
+    fn periodic_images_block_as_the_toroidal_distance() {
+        let r = 0.1;
+        let r2 = r * r;
+        let mut rng = seeded_rng(13);
+        let (mut blocked, mut clear) = (0, 0);
+        for period in [1.0, 0.45] {
+            let periods = [period, 0.0];
+            let wide = period >= 10.0 * r;
+            for round in 0..4000 {
+                let origin = [unit(&mut rng) * period, unit(&mut rng)];
+                let mut cache = ConflictCache::<2, 8>::new(origin, r);
+                let mut remembered = Vec::new();
+                for _ in 0..6 {
+                    // Within 3r of the origin, wrapped into the box.
+                    let dir = direction::<2>(&mut rng);
+                    let d = 3.0 * r * unit(&mut rng);
+                    let mut q = [origin[0] + dir[0] * d, origin[1] + dir[1] * d];
+                    q[0] = q[0].rem_euclid(period);
+                    cache.push_periodic(&q, &periods);
+                    remembered.push(q);
+                }
+                // A candidate r to 2r from the origin, as its offset.
+                let dir = direction::<2>(&mut rng);
+                let d = r * (1.0 + unit(&mut rng));
+                let offset = [dir[0] * d, dir[1] * d];
+                let mut c = [origin[0] + offset[0], origin[1] + offset[1]];
+                c[0] = c[0].rem_euclid(period);
+                #[expect(clippy::cast_possible_truncation, reason = "f32 on purpose")]
+                let rel = offset.map(|x| (x / r) as f32);
+                let quick = cache.block_relative(&rel);
+                let nearest = remembered
+                    .iter()
+                    .map(|q| periodic_distance_squared(&c, q, &periods))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    !quick || nearest < r2,
+                    "{period} round {round}: blocked from afar"
+                );
+                if wide {
+                    assert!(
+                        quick || nearest >= r2 * (1.0 - 1.0 / 1024.0),
+                        "{period} round {round}: missed a point well inside"
+                    );
+                }
+                blocked += usize::from(quick);
+                clear += usize::from(nearest >= r2);
+            }
+        }
+        assert!(
+            blocked > 1000 && clear > 1000,
             "{blocked} blocked, {clear} clear"
         );
     }

@@ -947,7 +947,11 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
             }
             let mut state = self.candidates.start(self.rng);
             let mut cache = ConflictCache::<N, B>::new(parent, radius);
-            grid.seed(&parent, B, |q| cache.push(q));
+            if periodic {
+                grid.seed(&parent, B, |q| cache.push_periodic(q, &periods));
+            } else {
+                grid.seed(&parent, B, |q| cache.push(q));
+            }
             // Far from every face (the usual case), no candidate can leave
             // the box: skip the per-attempt test. Candidates lie within
             // 2r·(1 + 1e-6) of the parent (the `f32` draws of `wide.rs`
@@ -957,9 +961,14 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
             // Coordinates below 2²⁸·r: the candidate is its offset from the
             // parent to within 2⁻²⁵·r, so the cache takes the offset drawn
             // ahead in units of r instead of recomputing it
-            // (`ConflictCache::block_relative`).
-            let near_origin =
-                !periodic && ahead && parent.iter().all(|x| x.abs() < radius * NEAR_ORIGIN);
+            // (`ConflictCache::block_relative`); on a torus, periods below
+            // 2²⁸·r too, for the remembered points' nearest images
+            // (`ConflictCache::push_periodic`).
+            let near_origin = ahead
+                && parent
+                    .iter()
+                    .chain(&periods)
+                    .all(|x| x.abs() < radius * NEAR_ORIGIN);
             for _ in 0..self.attempts {
                 let offset = if ahead {
                     let (j, offset_in_r) = self.ahead.next_unit(self.candidates, self.rng);
@@ -984,10 +993,10 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
                 if !self.region.admits(&candidate) {
                     continue;
                 }
-                let blocked = if periodic {
-                    cache.block_periodic(&candidate, self.radius_squared, &periods)
-                } else if near_origin {
+                let blocked = if near_origin {
                     false
+                } else if periodic {
+                    cache.block_periodic(&candidate, self.radius_squared, &periods)
                 } else {
                     cache.block(&candidate, self.radius_squared)
                 };
@@ -995,7 +1004,11 @@ impl<const N: usize, R: Rng, G: Region<N>> State<'_, N, R, G> {
                     continue;
                 }
                 if let Some(q) = grid.conflict(&candidate) {
-                    cache.push(&q);
+                    if periodic {
+                        cache.push_periodic(&q, &periods);
+                    } else {
+                        cache.push(&q);
+                    }
                     continue;
                 }
                 match store(grid, self.active, candidate, self.budget) {

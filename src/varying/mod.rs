@@ -332,9 +332,16 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         let r0 = rp * QUICK_RADIUS;
         let inv_r0 = 1.0 / r0;
         let mut cache = ConflictCache::<N, B>::new(parent, r0);
+        let periodic = self.domain.any_periodic();
         cache.push(&parent);
         if let Index::Levels(levels) = &mut self.index {
-            levels.seed(&self.points, &parent, rp, B - 1, |q| cache.push(q));
+            if periodic {
+                levels.seed(&self.points, &parent, rp, B - 1, |q| {
+                    cache.push_periodic(q, &periods);
+                });
+            } else {
+                levels.seed(&self.points, &parent, rp, B - 1, |q| cache.push(q));
+            }
         }
         // Far from every face, no candidate can leave the box (annulus
         // candidates lie within 2·r(p)·(1 + 1e-7), on-sphere ones within
@@ -343,10 +350,14 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         let interior = !self.domain.any_periodic() && self.domain.holds_ball(&parent, reach);
         let ahead = self.candidates.reads_ahead();
         // Coordinates below 2²⁸·r0: the candidate is its offset from the
-        // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`).
+        // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`); on a
+        // torus, periods below 2²⁸·r0 too, for the remembered points'
+        // nearest images (`ConflictCache::push_periodic`).
         let quick = ahead
-            && !self.domain.any_periodic()
-            && parent.iter().all(|x| x.abs() < r0 * NEAR_ORIGIN);
+            && parent
+                .iter()
+                .chain(&periods)
+                .all(|x| x.abs() < r0 * NEAR_ORIGIN);
         let mut state = if ahead {
             [0.0; N]
         } else {
@@ -402,7 +413,11 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
             }
             if let Some(q) = self.index.blocked(&self.points, &periods, &c, rc) {
                 if let Some((q, _)) = self.points.get(q) {
-                    cache.push(q);
+                    if periodic {
+                        cache.push_periodic(q, &periods);
+                    } else {
+                        cache.push(q);
+                    }
                 }
                 continue;
             }
