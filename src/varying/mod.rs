@@ -347,7 +347,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
         // candidates lie within 2·r(p)·(1 + 1e-7), on-sphere ones within
         // r_max·(1 + 1e-7); the test keeps twice its reach).
         let reach = if self.sphere { self.r_max } else { 2.0 * rp };
-        let interior = !self.domain.any_periodic() && self.domain.holds_ball(&parent, reach);
+        let interior = !periodic && self.domain.holds_ball(&parent, reach);
         let ahead = self.candidates.reads_ahead();
         // Coordinates below 2²⁸·r0: the candidate is its offset from the
         // parent to within 2⁻²⁵·r0 (`ConflictCache::block_relative`); on a
