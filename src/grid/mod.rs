@@ -5,11 +5,13 @@
 //! - [`dense::Dense`]: Bridson's grid of cells of side `<= r/√N`, each
 //!   holding the `u32` index of at most one point. Fast, memory ∝ box
 //!   volume (4 bytes a cell) plus the points.
-//! - [`bricks::Bricks`]: the same cells in 3-D, in bricks of 4×4×4 byte
-//!   cells with each brick's points stored beside it (6 bytes a cell, the
-//!   points included), so that a search's cache lines are few and known
-//!   from its cell. Used for [`GridLayout::Dense`] in 3-D wherever it fits
-//!   the budget, the `u32` grid otherwise.
+//! - [`bricks::Bricks`]: the same cells in 3-D, grouped in bricks of
+//!   4×4×4; a brick is a 64-bit mask of its occupied cells followed by
+//!   their points in cell order (up to 13, the rest in a spill chunk), so
+//!   there is no per-cell array and a search's cache lines are few and
+//!   known from its cell. About 5 bytes a cell, the points included. Used
+//!   for [`GridLayout::Dense`] in 3-D wherever it fits the budget, the
+//!   `u32` grid otherwise.
 //! - [`sparse::Sparse`]: a hash map (or an array of heads) from cells of
 //!   side `≈ r` to the points in them. Memory ∝ number of points, whatever
 //!   the box. Chosen by [`GridLayout::Auto`] from 4-D up, or when the dense
@@ -40,11 +42,9 @@ use crate::vector::unit_ball_volume;
 pub enum GridLayout {
     /// Dense when `N <= 3` and the dense grid fits the memory budget,
     /// otherwise sparse. From 4-D up the dense grid's neighbourhood (504
-    /// cells a check in 4-D, thousands from 5-D) costs more than the
-    /// sparse grid's search: in 4-D the sparse grid takes 0.22–0.65 of the
-    /// dense grid's time and under a third of its memory at 200 000
-    /// points (measured in `docs/performance-journal.md`, "Sparse grid
-    /// from 4-D up").
+    /// cells a check in 4-D, thousands from 5-D) costs more time and
+    /// memory than the sparse grid's search (the journal's "Sparse grid
+    /// from 4-D up" has the measurements).
     #[default]
     Auto,
     /// Bridson's dense grid; an error if it does not fit the budget.
