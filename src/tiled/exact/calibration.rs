@@ -13,124 +13,30 @@ use super::{Exact, ExactMethod};
 
 /// The edge correction `[βx, βy, γ, δ, ε]` (see [`Exact::edge_factor`]) at
 /// the default oversampling and `k` ([`DEFAULT_OVERSAMPLE`](super::DEFAULT_OVERSAMPLE),
-/// [`EXACT_ATTEMPTS`](super::EXACT_ATTEMPTS)). `ε` (2026-11-24, eighth session) cancels a
-/// left-right tilt at `n = 4` that only rasters of 10⁶ pixels resolve: a
-/// short pixel is mended left to right, its darts free to take points
-/// from the unsettled pixels on its right, not the settled ones on its
-/// left, so the left half of each pixel kept less (the in-pixel first
-/// harmonic's `sin` term in `x` −0.0016 to −0.0021 at 1024², seeds 1 to
-/// 4, both methods; pixel-frequency power 2.7–4.9 in `x` where 3 is the
-/// goal). Linear in `ε`: at `ε = −0.05` the term was +0.0059 to +0.0061
-/// (elimination) and +0.0029 to +0.0030 (random dropping), seeds 1 and
-/// 2, so `ε = −0.012` and `−0.019` zero it; at `n = 8` (724²) the term
-/// was 0.0000 and +0.0001 already, so `ε` fell to 0 there (at 1.34·10⁸
-/// points a tilt of −0.0002 to −0.0003 showed there too; see below).
-/// Afterwards, 1024², seeds 1 to 4: the `sin` term within ±0.0006, power
-/// in `x` at most 0.53 and 0.36. In the same session random dropping's `γ` and `βy`
-/// at `n = 16` were set again from 512² (4 M points; they had left power
-/// 17.7–22.6 in `y` at 1024²), and its `βx` and `βy` at `n = 8` from 1024²
-/// (power 2.97–4.45 in `x` there), the same way. In the ninth session
-/// elimination came to weigh one row (the module docs), which moved the
-/// `sin` term in `y` (+0.0019 at `n = 8` and 16, power 1.0–2.4 in `y`): its
-/// `βy` and `γ` at `n` = 4, 8 and 16 were solved again from two settings
-/// each (512², 362², 256², seeds 1 and 2; `βy` at 16 from 512²), leaving
-/// power at most 1.09 at 1024² (`n = 4`, seeds 1 and 2; `n = 16`, seed 1)
-/// and 724² (`n = 8`); at `n = 64` the sets are the same as before.
+/// [`EXACT_ATTEMPTS`](super::EXACT_ATTEMPTS)), from the table in [`rows`]:
+/// linear in `n` between rows, the first row's values below it (at `n = 1`
+/// no β helps: a quarter of the pixels are short there), the last row's
+/// past it.
 ///
-/// A renderer's frame holds far more points than those rasters, and the
-/// pixel-frequency power of a fixed residual grows with the count
-/// (`N·|h|²/4` for a first harmonic `h`): at 1.07·10⁹ points (16384², one
-/// run, 2026-11-28) elimination at `n = 4` read 212 in `y`, from a residual
-/// of about −0.0008 (`cos`) and +0.0003 (`sin`) that runs of 10⁶ points
-/// cannot resolve, and random dropping 12 at 1.34·10⁸ points. So their
-/// `βy` and `γ` at `n = 4` were solved again on 8192×4096 pixels (1.34·10⁸
-/// points a run): a step of +0.03 moved the `cos` term by +0.0039
-/// (elimination) and +0.0020 (random dropping) and the `sin` term, for
-/// `γ`, by −0.0040 and −0.0030. Elimination's `βy` 0.072 → 0.0782 and `γ`
-/// −0.044 → −0.0417 (seeds 1 and 3 then: power 0.26 / 0.53 and 0.17 / 1.24
-/// in `x` / `y`, edge bands 0.960–0.985, no top-up); random dropping's
-/// `βy` 0.138 → 0.1425 and `γ` −0.074 → −0.069 (seeds 1 and 3: power 1.17 /
-/// 0.07 and 0.27 / 0.14, edge bands 0.963–0.995, no top-up). At `n = 16`
-/// (4096×2048, the same count of points) the old terms read 5.87 / 4.45
-/// (elimination) and 9.11 / 1.18 (random dropping), seed 2; from a step
-/// of +0.03 in `βx` (the `x` `cos` term +0.0029 and +0.0018) and the
-/// earlier `βy` slope, elimination's `βx` 0.072 → 0.0677 and `βy` 0.077 →
-/// 0.0809, random dropping's `βx` 0.048 → 0.0567 (seed 1 then: 0.51 / 0.65
-/// and 0.71 / 1.32, edge bands 0.981–1.006). In the next session `n = 64`
-/// (1448², the same count) followed: its old terms read 20.0 / 13.3
-/// (elimination) and 7.0 / 6.1 (random dropping), seed 2; from a step of
-/// +0.03 in each of `βx`, `βy` and `γ`, elimination's terms went from
-/// `[0.007, 0.034, 0.017]` to `[0.0152, 0.0384, 0.013]` and random
-/// dropping's from zero to `[0.0077, 0.0072, 0]` (seeds 1 and 3 then: power
-/// at most 0.73, edge bands 0.973–1.023). And `n = 8` (4096², the same
-/// count; old terms 31.1 / 19.5 and 2.4 / 16.9, seed 2), from steps in
-/// `βx` and `βy` (elimination) and `βy` and `γ` (random dropping), the
-/// other terms from the slopes measured at `n` = 4, 16 and 64. With the
-/// new row for 64, `n = 32` (2048², seed 1), which lies between rows,
-/// read 92.7 / 20.4 (elimination) and 45.4 / 41.3 (random dropping): the
-/// terms fall faster than linearly from 16 to 64, so `n = 32` has a row of
-/// its own, solved from that run and the slopes at 16 and 64; so do
-/// `n = 24` (2365², seed 1: 5.25 / 4.54 and 8.09 / 4.71 between the rows
-/// for 16 and 32) and elimination's `n = 48` (1672²: 3.13 / 2.95; random
-/// dropping's 1.40 / 0.75, so its row for 48 is the interpolation). On
-/// seed 2 the new rows read at most 0.78. `βx` at `n = 4` (elimination)
-/// fell from 0.193 to 0.1918: at 1.07·10⁹ points, after the `βy` and `γ`
-/// above, it read 4.84 in `x` (a `cos` term of +0.00013, taken at the
-/// slope `n = 8` gave, 0.11), which no run of 10⁸ points resolves (0.17
-/// to 0.31); a third billion-point run, on the new terms, then read
-/// 0.32 / 1.75.
+/// Each row zeroes the first harmonic of the kept density across a pixel,
+/// which is linear in each term, so a row is solved from runs at two
+/// settings (`examples/stream.rs --exact N --method M --bias ...`). The
+/// runs are large because the pixel-frequency power of a fixed residual
+/// grows with the point count (`N·|h|²/4` for a first harmonic `h`), so a
+/// frame of a renderer shows residuals a small raster cannot resolve.
+/// - `δ` lifts the top band, which the rows above deplete (their darts
+///   take points near it, and elimination sees their final points).
+/// - `ε` cancels a left-right tilt: a short pixel is mended left to right,
+///   its darts free to take points from the unsettled pixels on its
+///   right, not from the settled ones on its left.
+/// - `y` differs from `x` because rows are settled in order and columns
+///   together: darts take room from the row below, and elimination sees
+///   the rows above settled and the row below oversampled.
 ///
-/// Past `n = 64` the table had no row, so `n` = 128 to 1024 took 64's
-/// terms. At 1.34·10⁸ points (seed 2), elimination then read power 20.9 /
-/// 53.0 at 128 and 42–49 / 131–237 at 256, 512 and 1024; random dropping
-/// read 3.6–8.8. In the sixth session of 2026-11-28, elimination got rows
-/// for 128, 256, 512 and 1024:
-/// - the slopes came from two settings at 128 (`[0, 0, 0]` and `[0.03,
-///   0.06, 0.03]`): 0.087 a unit of `βx`, 0.086 of `βy` and −0.125 of
-///   `γ`, within 10 % of 64's;
-/// - each other row was solved from its run on 64's terms, then solved
-///   again from that run and a check run on seed 3 (the `βy` slope falls
-///   to 0.072 at 1024, which left 4.52 in `y` there at first).
-///
-/// Random dropping's terms, solved the same way, lie within their noise
-/// (about ±0.002) of zero from 128 up, and with none its power read 0.42 /
-/// 0.76 at 128: its table ends with a row of zeros at 128. Past 1024 the
-/// last row holds, unmeasured.
-///
-/// Counts between the rows, at the same size (seed 1), read over 3 where
-/// the terms curve most. Elimination / random dropping, `x` / `y`:
-/// - `n = 6`: 36.4 / 62.6 and 200.4 / 70.3;
-/// - `n = 5`, once 6 had its row: 8.7 / 16.1 and 44.8 / 10.3;
-/// - `n = 12`: 12.5 / 20.4 and 29.6 / 17.0;
-/// - elimination at `n = 96`: 1.92 / 3.41; at 7: 1.18 / 2.96.
-///
-/// Each got a row, solved from that run with the slopes measured nearby
-/// and checked on seed 2. Counts 20, 40, 56, 192, and random dropping's 7
-/// and 96, read at most 2.39 between rows; the other counts between rows
-/// are unmeasured. Every run is in `docs/streaming-runs.md`.
-///
-/// `δ` lifts the top band, which the rows above
-/// deplete (their darts kill points near it, and elimination sees their
-/// final points): at `n = 4` it was 0.93–0.94 of the interior without it
-/// (elimination; random dropping 0.95–0.96). It was set by hand, trying
-/// 0 to 0.6 with a throwaway build that read it from the environment (0.2:
-/// top bands 0.96–0.97 for elimination, 0.95–0.97 for random dropping, 512²
-/// and 256², three seeds); at `n >= 16` the bands are within 1–3 % without
-/// it (at `n = 8` interpolating the rest gave power 4–9, hence its row).
-/// Then, with `δ` fixed, `[βx, βy, γ]` zero the first harmonic of the
-/// kept density across a pixel, measured with `examples/stream.rs --exact
-/// N --method M --bias ...` on about 10⁶ points (512², 362², 256², 128²
-/// pixels for `n` = 4, 8, 16, 64, `δ` 0.2, 0.1, 0, 0; seeds 1 and 2
-/// averaged; the harmonic is linear in
-/// each): β from two settings, then γ from two (the script and its runs
-/// are in the journal, "Exact mode at k = 10"; the other rows came later,
-/// at 10⁸ points). Linear in `n` between the rows, the first row's values
-/// below (at `n = 1` no β helps: a quarter of the pixels are short there),
-/// the last row's above. `y` differs from `x` because rows are settled in
-/// order and columns together: darts take room from the row below, and
-/// elimination sees the rows above settled and the row below oversampled.
-/// Other oversamplings and `k` keep these values, which then fit less
-/// well (`docs/images/exact-tradeoff.png`).
+/// Other oversamplings and `k` keep these values, which then fit less well
+/// (`docs/images/exact-tradeoff.png`). How each row was solved, with its
+/// runs, is in `docs/performance-journal.md` ("Exact mode's calibration
+/// table, row by row").
 fn calibrated_bias(method: ExactMethod, n: usize) -> [f64; 5] {
     let table = rows(method);
     #[expect(clippy::cast_precision_loss, reason = "a count per pixel")]
