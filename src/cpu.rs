@@ -6,11 +6,11 @@
 //! One of the crate's three `unsafe` blocks (the others are `prefetch.rs`
 //! and `huge_pages.rs`). It pays where the time goes in 2-D: the offsets
 //! drawn eight at a time and the conflict cache's eight-slot check run four
-//! and eight lanes to a vector instead of two and four: 18 % fewer
-//! instructions in 2-D, 3–6 % less time there, 11 % in the streaming
-//! sweep and 6–11 % for a varying radius (the pick: 16 % fewer
-//! instructions), nothing in memory-bound 3-D with a fixed radius
-//! (`docs/performance-journal.md`, "Run-time dispatch to AVX2").
+//! and eight lanes to a vector instead of two and four. That saves
+//! instructions and time in 2-D, in the streaming sweep and for a varying
+//! radius (the pick), and nothing in memory-bound 3-D with a fixed radius
+//! (`docs/performance-journal.md`, "Run-time dispatch to AVX2", has the
+//! figures).
 //!
 //! **The same points.** Only the instructions the compiler may choose
 //! change, never the arithmetic: Rust does not contract `a * b + c` into a

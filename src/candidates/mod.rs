@@ -125,10 +125,10 @@ impl<const N: usize> CandidateSampler<N> {
     /// odd dimensions from 5-D up, whose ball draws reject about half their
     /// tries: drawn ahead, the rejections take no branch ([`shell`]). Even
     /// dimensions from 4-D up reject `2^-N` of their tries, and draw one by
-    /// one faster than ahead (4-D 10.5 ns an offset against 14, 6-D 13
-    /// against 23, 8-D 16 against 27; 5-D 38 against 20, 7-D 43 against
-    /// 28). Up to 63-D, where the cache's quick check on the offsets drawn
-    /// ahead holds (`ConflictCache::block_relative`).
+    /// one faster than ahead (odd ones the other way round; the journal's
+    /// "odd dimensions' offsets drawn ahead"). Up to 63-D, where the cache's
+    /// quick check on the offsets drawn ahead holds
+    /// (`ConflictCache::block_relative`).
     pub(crate) fn reads_ahead(&self) -> bool {
         self.kind == Candidates::Annulus && (N == 2 || N == 3 || (N >= 5 && N <= 63 && N % 2 == 1))
     }

@@ -8,8 +8,7 @@
 //! active point plus the same offset widened to `f64` and scaled by `r`:
 //! the quick check sees the candidate's own offset (to `2⁻⁵³` relative, the
 //! product's rounding), and the grid's exact `f64` test decides as before.
-//! On an AMD EPYC host (2026-11-29) this took about 5 % off 2-D's time and
-//! 3 % off 3-D's against the same draws in `f64`
+//! This is faster than the same draws in `f64`
 //! (`docs/performance-journal.md`, "Offsets in `f32`").
 //!
 //! **The law** is the `f64` draw's to within `f32` rounding: radius
@@ -28,13 +27,10 @@ use super::tables::{CUBE_ROOTS_F32, DIRECTIONS_F32, TABLE_BITS};
 /// sampler in 2-D and 3-D), and the room every batch has for its `f32`
 /// offsets: 32 × `N` coordinates, 8 KiB at the largest `N` that reads
 /// ahead (63), where eight would do; the type cannot size itself by `N`
-/// on stable Rust. On an AMD EPYC host (2026-11-29) 1 M points
-/// took 10 % less time in 3-D and 3 % less in 2-D with 32 than with 8:
-/// four times the independent chains in one vector loop
-/// (`docs/performance-journal.md`, "Offsets drawn 8 ahead"). The same 32
-/// drawn as four fills of 8 gained next to nothing in 3-D, so the width of
-/// the loop is what pays, not fewer refills. (They are drawn in `f32`
-/// since: this file.)
+/// on stable Rust. 32 is faster than 8: four times the independent chains
+/// in one vector loop (`docs/performance-journal.md`, "Offsets drawn 8
+/// ahead"). The same 32 drawn as four fills of 8 gain next to nothing in
+/// 3-D, so the width of the loop is what pays, not fewer refills.
 pub(super) const WIDE: usize = 32;
 
 /// `2⁻²⁴`: a 24-bit integer as a fraction of one.

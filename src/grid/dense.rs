@@ -418,10 +418,9 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
 /// stencil (the cells within `r`) leaves out the points `2r` to `3r` away,
 /// behind about two of a point's three grid searches. These cells hold
 /// about 14 points, which the cache's 16 slots take, checked in two
-/// vectors of eight. On an AMD EPYC host 1 M points took 15 % less time
-/// than with the stencil's 20 cells and 8 slots
-/// (`docs/performance-journal.md`, "The 2-D seed out to 2r"); more cells
-/// (the 9×9 within `3r`), fewer (36), or 24 slots were slower.
+/// vectors of eight. That is faster than the stencil's 20 cells and 8
+/// slots, and than more cells (the 9×9 within `3r`), fewer (36), or 24
+/// slots (`docs/performance-journal.md`, "The 2-D seed out to 2r").
 ///
 /// For grids padded by the search's reach of 2 cells (the streaming
 /// window's too): offsets past the padding land on a padding cell of the

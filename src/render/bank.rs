@@ -18,7 +18,7 @@ use core::fmt;
 pub(crate) const SETS: usize = 32;
 
 /// A little under the relative radius ρ a Bridson set reaches at `k = 30`
-/// (about 0.75 in 2-D, as the README reports; in 1-D, where ρ is the count
+/// (about 0.75 in 2-D; in 1-D, where ρ is the count
 /// times the radius, gaps fall between `r` and `2r`, so about 0.67), so that
 /// a run planned for `c` points gives about `c` or a few more. A short run
 /// is simply repeated at a smaller radius.

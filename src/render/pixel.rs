@@ -82,20 +82,10 @@ const SECOND: u64 = 0x1319_8a2e_0370_7344;
 /// # Performance
 /// A camera sample (film, time, lens: five values) costs six hashes, three
 /// 10-round permutations run side by side, and three table reads, with no
-/// allocation. The bank is the one-off cost, paid in [`new`](Self::new).
-/// Measured with `cargo bench --bench render` (release, a 512×512 image
-/// pixel by pixel, one thread, on a 2-core AMD EPYC VM; camera samples
-/// with the machine otherwise idle, bank builds under load):
-///
-/// | samples per pixel | 1 | 4 | 16 | 64 | 256 | 4096 |
-/// |---|---|---|---|---|---|---|
-/// | camera samples per second | 84 M | 13.1 M | 13.4 M | 13.5 M | 13.3 M | |
-/// | bank build | 0.58 ms | 0.82 ms | 2.2 ms | 7.7 ms | 28 ms | 0.43 s |
-///
-/// (One sample per pixel needs no permutation. Under load, with other
-/// builds running, the rates fell to 8.6–11.3 M per second.) The bank
-/// costs about 0.1 ms per sample per pixel, under 1 % of the time it takes
-/// to draw a 512×512 image's camera samples at any count.
+/// allocation (one sample per pixel needs no permutation). The bank is the
+/// one-off cost, paid in [`new`](Self::new): it grows about linearly with
+/// the samples per pixel and stays a small fraction of the time it takes
+/// to draw an image's camera samples at any count.
 ///
 /// # Example: exactly 5 samples in every dimension
 /// ```

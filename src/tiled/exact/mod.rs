@@ -42,11 +42,8 @@
 //!      points and the final points above. Row `y + 1` is thinned later,
 //!      so a term from one of its points counts with `sⱼ = n / c`, the
 //!      share of its pixel's `c` points that will stay (`sⱼ = 1` for the
-//!      others). Until 2026-11-24 (ninth session) the two rows were
-//!      eliminated together and row `y + 1`'s result thrown away: each
-//!      row was weighed twice, for the same image error in the tracer
-//!      study (within ±0.2 % in all 12 cells, `docs/trace.md`) at
-//!      1.12–1.17× the time at `n = 4` and 16
+//!      others). Eliminating both rows together and throwing row
+//!      `y + 1`'s result away gives the same image error at more cost
 //!      (`docs/performance-journal.md`, "Exact mode: one row eliminated").
 //!    - [`ExactMethod::Random`]: the excess points of each pixel are picked
 //!      uniformly at random, blind to where they lie.
@@ -122,21 +119,15 @@ pub const EXACT_ATTEMPTS: u32 = 10;
 /// (at `n = 4` the density across a pixel rippled by about ±2.5 % at half
 /// a pixel); the edge correction and its feedback hold every frequency of
 /// the pixel lattice up to two cycles a pixel flat (`(1, 0)`, `(2, 0)`,
-/// `(1, ±1)`, `(2, ±1)`, …). README's streaming table has both, measured.
+/// `(1, ±1)`, `(2, ±1)`, …). `docs/streaming.md` measures both.
 ///
 /// In renders, elimination gives the lower error, hence the default: in
-/// the tracer study (`examples/trace.rs`, `docs/trace.md`, 2026-11-24:
-/// four scenes at 4, 16 and 64 samples per pixel, one exact stream over
-/// the image as a renderer runs it), random dropping's RMSE was 0–12 %
-/// higher: beyond the noise on the checkerboard, the moving sphere and
-/// (from 16 samples) the lit figure, level on the depth-of-field scene;
-/// with the sweep at `k = 10` (its third study), 0.1–7.8 % higher.
-/// Elimination now weighs one row at a time (the fourth study: RMSE
-/// within ±0.2 % of the two-row form it replaced, random dropping's
-/// −0.1 % to +7.8 % above it). Random dropping still samples faster:
-/// 0.73–0.78 of elimination's time at `n` = 4, 16 and 64
-/// (`examples/stream.rs`, 2026-11-24); a renderer whose sampling costs
-/// more than its shading may prefer it.
+/// the tracer study (`examples/trace.rs`, `docs/rendering.md`: four scenes
+/// at 4, 16 and 64 samples per pixel, one exact stream over the image as a
+/// renderer runs it), random dropping's RMSE is up to 8 % higher, beyond
+/// the noise on the checkerboard, the moving sphere and the lit figure,
+/// level on the depth-of-field scene. Random dropping samples faster; a
+/// renderer whose sampling costs more than its shading may prefer it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(
     feature = "serde",
