@@ -112,17 +112,17 @@ impl Exact {
     /// The feedback that trims the calibrated correction (`feedback.rs`), with
     /// `method`'s slopes: how `[βx, βy, γ, ε]` move the harmonics they
     /// cancel (`x` `cos`, `y` `cos`, `y` `sin`, `x` `sin`, each `2·mean`),
-    /// measured at 1.34·10⁸ points (`docs/streaming-runs.md`: elimination
+    /// measured at 1.34·10⁸ points (`docs/records/streaming.jsonl`: elimination
     /// 0.072–0.13 a unit of `βx` and `βy`, −0.12 to −0.133 of `γ`, −0.16 of
     /// `ε`; random dropping 0.057–0.067, −0.092 to −0.10 and −0.10), and the
     /// response `c` behind them (the kept density moves as `1 + c·β·h`):
     /// 0.49 and 0.3, `βx`'s slope over `2/π²`. The response differs by shape:
     /// `ε`'s slope over `−2/π` gives 0.25 and 0.16, so the cross terms'
     /// slopes may be up to twice the true ones, which slows their loop but
-    /// keeps it stable. The waves' slope (how `A` moves `2·mean(cos)`) was
+    /// keeps it stable. The waves' slope (how `A` moves `2·mean(cos)`) is
     /// read from the waves' settled amplitudes against the harmonics they
-    /// cancel at `n = 4` (`docs/streaming-runs.md`, "The lattice's other
-    /// frequencies"): 0.37 for elimination, 0.13–0.16 for random dropping.
+    /// cancel at `n = 4` (`docs/records/streaming.jsonl`, "The lattice's
+    /// other frequencies"): 0.37 for elimination, 0.13–0.16 for random dropping.
     ///
     /// The waves run from `n = 3` up ([`WAVES_FROM`]).
     pub(super) fn feedback(method: ExactMethod, n: usize) -> Feedback {
