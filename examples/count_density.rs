@@ -1,4 +1,4 @@
-//! Measures the densities behind `Builder::about_points` (the count mode):
+//! Measures the densities behind `PoissonDiskBuilder::about_points` (the count mode):
 //! how many points the sampler actually makes per `r^N`, in the interior of
 //! a large periodic box and along thin axes, for each dimension and
 //! candidate kind at the default `k = 30`, and how both change with `k`.

@@ -114,7 +114,7 @@ fn run<const N: usize>(args: &Args) -> Result<(), Failure> {
     let mut totals = [(vec![0_u64; BANDS], 0_u64), (vec![0_u64; BANDS], 0_u64)];
     for &seed in &args.seeds {
         let parallel = sampler
-            .generate_parallel(seed, args.threads)
+            .generate_parallel_seeded(seed, args.threads)
             .map_err(|e| Failure::Usage(e.to_string()))?;
         let serial = sampler
             .generate_seeded(seed)

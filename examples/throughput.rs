@@ -171,7 +171,7 @@ fn run<const N: usize>(case: &Case) -> Result<(usize, f64, f64), String> {
         What::Parallel(threads) => {
             let threads = NonZeroUsize::new(threads).ok_or("no threads")?;
             sampler::<N>(case.radius, Candidates::Annulus, GridLayout::Auto)?
-                .generate_parallel(SEED, threads)
+                .generate_parallel_seeded(SEED, threads)
                 .map_err(|e| e.to_string())?
                 .len()
         }

@@ -107,7 +107,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     let sampler =
         PoissonDisk2::new(domain, args.r_max).map_err(|e| Failure::Usage(e.to_string()))?;
     let points: Vec<[f64; 2]> = sampler
-        .iter_varying(args.seed, args.r_min, &field)
+        .iter_varying_seeded(args.seed, args.r_min, &field)
         .map_err(|e| Failure::Usage(e.to_string()))?
         .collect();
     let scale = f64::from(args.height);

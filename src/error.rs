@@ -41,7 +41,7 @@ pub enum Error {
         /// The largest `k` accepted.
         max: u32,
     },
-    /// Occurs when count mode ([`Builder::about_points`](crate::Builder::about_points))
+    /// Occurs when count mode ([`PoissonDiskBuilder::about_points`](crate::PoissonDiskBuilder::about_points))
     /// in 2-D or 3-D is asked for with `k` outside the range its density
     /// tables cover: below 3 growth dies out at random, so no radius gives
     /// a count; above 1000 the density, still creeping up, is not measured.
@@ -51,9 +51,9 @@ pub enum Error {
         /// The largest.
         max: u32,
     },
-    /// Occurs when a point cap ([`Builder::max_points`](crate::Builder::max_points))
-    /// is negative: only an `i32`, the type of an untyped integer literal,
-    /// can be.
+    /// Occurs when count mode
+    /// ([`PoissonDiskBuilder::about_points`](crate::PoissonDiskBuilder::about_points))
+    /// asks for 0 points.
     InvalidPointCount,
     /// Occurs when a pre-placed point given to
     /// [`PoissonDisk::iter_with`](crate::PoissonDisk::iter_with) is not
@@ -109,7 +109,7 @@ pub enum Error {
     },
     /// Occurs when a run stops because storing its next point would take
     /// the memory in use (the grid, its points and the active list) past
-    /// the budget. Reported by [`Iter::error`](crate::Iter::error) and by
+    /// the budget. Reported by [`Points::error`](crate::Points::error) and by
     /// [`PoissonDisk::generate`](crate::PoissonDisk::generate). The points
     /// already yielded are a valid set (every guarantee holds for them);
     /// it is just not complete. Raise the budget, cap the number of points
@@ -121,7 +121,7 @@ pub enum Error {
         budget: u64,
     },
     /// Occurs when a sampler with a point cap
-    /// ([`Builder::max_points`](crate::Builder::max_points)) is asked for a
+    /// ([`PoissonDiskBuilder::max_points`](crate::PoissonDiskBuilder::max_points)) is asked for a
     /// parallel run ([`PoissonDisk::generate_parallel`](crate::PoissonDisk::generate_parallel)):
     /// a cap keeps a prefix of one run's stream, and a parallel run has no
     /// single stream. Bound its memory with the budget instead.
@@ -177,7 +177,7 @@ impl fmt::Display for Error {
                 "pre-placed point {index} is not finite, lies outside the domain, or lies closer \
                  than r to an earlier one"
             ),
-            Self::InvalidPointCount => f.write_str("a point count or cap must not be negative"),
+            Self::InvalidPointCount => f.write_str("a point count must be at least 1"),
             Self::CountAttemptsOutOfRange { min, max } => write!(
                 f,
                 "a point count needs the number of attempts k within {min}..={max} (2-D and 3-D)"

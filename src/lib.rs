@@ -11,7 +11,7 @@
 //!   points lazily, in generation order, or collects them all;
 //!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
 //!   and clear of pre-placed points, which also gives seamless chunks of
-//!   an endless world (README has the recipe), and
+//!   an endless world (`examples/endless_world.rs`), and
 //!   [`PoissonDisk::iter_varying`] lets the radius vary with position;
 //!   [`PoissonDisk::generate_parallel`] makes a set on several threads,
 //!   slab by slab (a different set from one run's, with its statistics).
@@ -160,14 +160,14 @@
 //!    parameters are an [`Error`] from the constructor, and the heap a run
 //!    holds (grid, stencils, points, active list) is counted against a
 //!    budget before each allocation; a run that would outgrow it stops,
-//!    with [`Error::MemoryBudgetExceeded`] from [`Iter::error`], its points
+//!    with [`Error::MemoryBudgetExceeded`] from [`Points::error`], its points
 //!    so far still valid.
 //! 4. The set is maximal to `k` attempts: the stream ends only when every
 //!    point has failed `k` candidate throws around it.
 //!
 //! # Limits
 //! What each awkward input gives. Errors come from [`Domain::new`] (box) or
-//! [`Builder::build`] (everything else), checked in this order: dimension,
+//! [`PoissonDiskBuilder::build`] (everything else), checked in this order: dimension,
 //! box, radius, attempts, point cap, grid; the budget is then checked as the run
 //! grows. Each row is a test in `tests/invalid_input.rs`,
 //! `tests/count_mode.rs` or `tests/memory_budget.rs`; the fuzz targets in
@@ -185,14 +185,14 @@
 //! | box thinner than `r` on some axis (bounded or periodic) | valid points: a row, or a single point |
 //! | `r` far larger than the box (a radius in the wrong units: `r = 200` in a unit box) | one point, at once, in a few kilobytes: the search reach stops at the box (periodic: at one period), and a box whose diameter is below `r` ends after its first point |
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
-//! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Iter::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
-//! | [`Builder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Iter::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
-//! | point cap negative (`max_points(-1)`: only an `i32` literal can be), or count mode asking for 0 or a negative number of points (`about_points(0)`) | [`Error::InvalidPointCount`] |
+//! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Points::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
+//! | [`PoissonDiskBuilder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Points::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
+//! | count mode asking for 0 points (`about_points(domain, 0)`); a negative cap or count does not compile (both are `u64`) | [`Error::InvalidPointCount`] |
 //! | count mode asking for more points than radii down to `1e-150` give | [`Error::InvalidRadius`] |
 //! | count mode in 2-D or 3-D with `k` below 3 or above 1000 (its density tables' range) | [`Error::CountAttemptsOutOfRange`] |
 //! | `k = 0` | [`Error::ZeroAttempts`] |
 //! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
-//! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws (about 10⁷ per second), whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
+//! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws, whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
 //! | point cap `Some(0)` | an empty stream |
 //! | point cap `Some(c)` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
 //! | point cap `Some(u64::MAX)` | the same as `None` |
@@ -210,7 +210,7 @@
 //!
 //! # Feature flags
 //! - `serde`: `Serialize`/`Deserialize` for [`Domain`], [`PoissonDisk`]
-//!   (written as its [`Builder`]), [`Tiled`] (written as its
+//!   (written as its [`PoissonDiskBuilder`]), [`Tiled`] (written as its
 //!   [`TiledBuilder`]), [`Candidates`], [`GridLayout`] and [`Scheme`].
 //!   Deserialising validates again, so a bad file is an [`Error`], not a
 //!   bad sampler. Every field with a default may be left out; an unknown
@@ -224,8 +224,9 @@
 //! Up to 3-D the dense grid has cells of side `r/√N`, each holding the index
 //! of at most one point, and checks a precomputed, nearest-first list of the
 //! neighbour cells within reach of the half-cell the candidate lies in. In
-//! 3-D the cells are bytes in bricks of 4×4×4, each brick storing its own
-//! points, so that a neighbourhood is a few cache lines known in advance.
+//! 3-D the cells are grouped in bricks of 4×4×4, each brick a 64-bit mask of
+//! its occupied cells followed by their points, so that a neighbourhood is a
+//! few cache lines known in advance.
 //! Each pick also keeps a small cache of points, starting with its active point's
 //! neighbours and adding each point that rejects a candidate, and checks it
 //! first: that settles over 90 % of attempts in 2-D without a grid search.
@@ -239,8 +240,8 @@
 //! exceed the memory budget) a sparse grid is used, whose memory grows with the
 //! number of points; its search walks the cells within reach by branch and
 //! bound, nearest first, where the dense grid's stencil would check 504
-//! cells in 4-D. `README.md` has measured throughput against a textbook
-//! implementation.
+//! cells in 4-D. `docs/performance.md` compares throughput with a textbook
+//! implementation and the published crates.
 #![doc(test(attr(deny(warnings))))]
 // No panics on user input: library code neither unwraps nor indexes
 // unchecked; where an index is provably in range and a rewrite would cost
@@ -275,7 +276,6 @@ mod tiled;
 // parallel form (slabs).
 mod candidates;
 mod conflict_cache;
-mod count;
 mod parallel;
 mod sampler;
 mod varying;
@@ -295,7 +295,6 @@ mod serde_array;
 mod vector;
 
 pub use crate::candidates::Candidates;
-pub use crate::count::{PointCap, PointCount};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
@@ -306,14 +305,14 @@ pub use crate::render::{
     PoissonPixelSampler,
 };
 pub use crate::sampler::{
-    Builder, DEFAULT_ATTEMPTS, Everywhere, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2,
-    PoissonDisk3, Region,
+    DEFAULT_ATTEMPTS, Everywhere, MAX_ATTEMPTS, Points, PoissonDisk, PoissonDisk2, PoissonDisk3,
+    PoissonDiskBuilder, Region,
 };
 pub use crate::tiled::{
     DEFAULT_MAX_WINDOW_BYTES, EXACT_ATTEMPTS, ExactMethod, Pixel, Pixels, Scheme, Tiled,
     TiledBuilder,
 };
-pub use crate::varying::Varying;
+pub use crate::varying::VaryingPoints;
 /// rand **0.10**, the version whose `Rng` trait [`PoissonDisk::iter`] and
 /// [`Tiled::pixels`] take, re-exported so that `bridson::rand::Rng` always
 /// names the right trait whatever rand your project uses (see "Which rand"

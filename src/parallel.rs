@@ -2,7 +2,7 @@
 //! slabs sampled side by side, then the odd slabs around them, each grown
 //! from its neighbours' points as pre-placed points.
 //!
-//! Built on the sampler's own runs ([`PoissonDisk::iter_with_rng`]), so
+//! Built on the sampler's own runs ([`PoissonDisk::iter_with`]), so
 //! every decision is the serial sampler's exact test: the union of the
 //! slabs keeps the guarantees because no two points of different slabs
 //! can come closer than `r` without one of them having been a pre-placed
@@ -17,6 +17,7 @@ use crate::random::{DefaultRng, seeded_rng};
 use crate::sampler::PoissonDisk;
 use core::num::NonZeroUsize;
 use core::sync::atomic::{AtomicUsize, Ordering};
+use rand::Rng;
 use std::sync::Mutex;
 
 /// The most slab pairs: 32 slabs, so 16 jobs a phase. More slabs are
@@ -191,12 +192,12 @@ impl<const N: usize> PoissonDisk<N> {
     /// inserted in their place: the same points, more memory. A layout
     /// that does not fit a slab's share is replaced by the sparse one for
     /// that slab, which changes no point. Count mode
-    /// ([`Builder::about_points`](crate::Builder::about_points)) works: the
+    /// ([`PoissonDiskBuilder::about_points`](crate::PoissonDiskBuilder::about_points)) works: the
     /// radius it derived is used.
     ///
     /// # Errors
     /// [`Error::PointCapInParallel`] if the sampler has a point cap
-    /// ([`Builder::max_points`](crate::Builder::max_points)): a cap keeps a
+    /// ([`PoissonDiskBuilder::max_points`](crate::PoissonDiskBuilder::max_points)): a cap keeps a
     /// prefix of one run's stream, and here there is no single stream.
     /// [`Error::MemoryBudgetExceeded`] from the first slab (along the axis)
     /// that outgrew its share, its `budget` being that share, and
@@ -209,14 +210,14 @@ impl<const N: usize> PoissonDisk<N> {
     /// use std::num::NonZeroUsize;
     /// let sampler = PoissonDisk2::new(Domain::from_extent([2.0, 1.0])?, 0.01)?;
     /// let threads = std::thread::available_parallelism().unwrap_or(NonZeroUsize::MIN);
-    /// let points = sampler.generate_parallel(5, threads)?;
+    /// let points = sampler.generate_parallel_seeded(5, threads)?;
     /// // About as many points as one run makes, and the same on one thread.
     /// let serial = sampler.generate_seeded(5)?.len() as f64;
     /// assert!((points.len() as f64 / serial - 1.0).abs() < 0.02);
-    /// assert_eq!(points, sampler.generate_parallel(5, NonZeroUsize::MIN)?);
+    /// assert_eq!(points, sampler.generate_parallel_seeded(5, NonZeroUsize::MIN)?);
     /// # Ok::<(), bridson::Error>(())
     /// ```
-    pub fn generate_parallel(
+    pub fn generate_parallel_seeded(
         &self,
         seed: u64,
         threads: NonZeroUsize,
@@ -224,7 +225,22 @@ impl<const N: usize> PoissonDisk<N> {
         self.generate_parallel_in(seed, threads, |rooms| rooms)
     }
 
-    /// [`generate_parallel`](Self::generate_parallel) with the slabs' rooms
+    /// As [`generate_parallel_seeded`](Self::generate_parallel_seeded),
+    /// seeded with one `u64` drawn from `rng`: the slabs need independent
+    /// streams, which a seed jumped per slab gives and one shared generator
+    /// cannot.
+    ///
+    /// # Errors
+    /// As [`generate_parallel_seeded`](Self::generate_parallel_seeded).
+    pub fn generate_parallel<R: Rng>(
+        &self,
+        mut rng: R,
+        threads: NonZeroUsize,
+    ) -> Result<Vec<[f64; N]>, Error> {
+        self.generate_parallel_seeded(rng.next_u64(), threads)
+    }
+
+    /// [`generate_parallel_seeded`](Self::generate_parallel_seeded) with the slabs' rooms
     /// in the output buffer passed through `rooms` (the identity but in
     /// tests, which shrink them to force the spill path).
     fn generate_parallel_in(
@@ -445,7 +461,7 @@ impl<const N: usize> PoissonDisk<N> {
             .collect();
         let inside = move |p: &[f64; N]| p.get(axis).is_some_and(|&x| lo <= x && x < hi);
         let sampler = self.slab_sampler(domain, budget)?;
-        let mut run = sampler.iter_with_rng(rng, inside, &fixed)?;
+        let mut run = sampler.iter_with(rng, inside, &fixed)?;
         for p in run.by_ref() {
             portion.push(p);
         }
@@ -735,7 +751,7 @@ mod tests {
             let slabs = Slabs::plan(s.domain(), s.radius()).unwrap();
             let share = s.max_grid_bytes() / (slabs.count() / 2) as u64;
             let rooms = s.rooms(&slabs, share);
-            let points = s.generate_parallel(seed, NonZeroUsize::MIN).unwrap();
+            let points = s.generate_parallel_seeded(seed, NonZeroUsize::MIN).unwrap();
             for (i, &room) in rooms.iter().enumerate() {
                 let (lo, hi) = slabs.bounds(i).unwrap();
                 let n = points
@@ -765,7 +781,7 @@ mod tests {
     #[test]
     fn spilled_points_keep_their_place() {
         fn check<const N: usize>(s: &PoissonDisk<N>, seed: u64) {
-            let expected = s.generate_parallel(seed, NonZeroUsize::MIN).unwrap();
+            let expected = s.generate_parallel_seeded(seed, NonZeroUsize::MIN).unwrap();
             let shrinks: [fn(Vec<usize>) -> Vec<usize>; 4] = [
                 |rooms| rooms.into_iter().map(|n| n / 3).collect(),
                 |rooms| vec![0; rooms.len()],

@@ -4,7 +4,6 @@
 use crate::budget::{reserve_one, vec_bytes};
 use crate::candidates::{CandidateSampler, Candidates, OffsetBatch};
 use crate::conflict_cache::{ConflictCache, NEAR_ORIGIN};
-use crate::count::{PointCap, PointCount, to_cap, to_count};
 use crate::cpu::dispatch;
 use crate::density::radius_for_count;
 use crate::domain::Domain;
@@ -88,9 +87,12 @@ const MAX_RADIUS: f64 = 1e150;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(try_from = "Builder<N>", into = "Builder<N>"))]
+#[cfg_attr(
+    feature = "serde",
+    serde(try_from = "PoissonDiskBuilder<N>", into = "PoissonDiskBuilder<N>")
+)]
 pub struct PoissonDisk<const N: usize> {
-    config: Builder<N>,
+    config: PoissonDiskBuilder<N>,
     plan: GridPlan<N>,
 }
 
@@ -111,7 +113,7 @@ pub type PoissonDisk3 = PoissonDisk<3>;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename = "PoissonDisk", deny_unknown_fields))]
-pub struct Builder<const N: usize> {
+pub struct PoissonDiskBuilder<const N: usize> {
     domain: Domain<N>,
     /// Absent (NaN) in count mode, which derives it.
     #[cfg_attr(
@@ -136,9 +138,6 @@ pub struct Builder<const N: usize> {
     max_grid_bytes: u64,
     #[cfg_attr(feature = "serde", serde(default))]
     max_points: Option<u64>,
-    /// A negative cap was given (an `i32` literal): `build` refuses it.
-    #[cfg_attr(feature = "serde", serde(skip))]
-    negative_cap: bool,
 }
 
 #[cfg(feature = "serde")]
@@ -165,7 +164,7 @@ fn default_budget() -> u64 {
     DEFAULT_MAX_GRID_BYTES
 }
 
-impl<const N: usize> Builder<N> {
+impl<const N: usize> PoissonDiskBuilder<N> {
     /// Sets `k`, the attempts around an active point before it retires
     /// (default 30, Bridson's choice). More attempts pack denser and cost
     /// more.
@@ -194,7 +193,7 @@ impl<const N: usize> Builder<N> {
     /// [`DEFAULT_MAX_GRID_BYTES`], 1 GiB): the
     /// most heap the grid, its points and the active list may hold at once,
     /// counted before each allocation. A run that would outgrow it stops
-    /// ([`Iter::error`]).
+    /// ([`Points::error`]).
     #[must_use]
     pub fn max_grid_bytes(mut self, bytes: u64) -> Self {
         self.max_grid_bytes = bytes;
@@ -213,18 +212,16 @@ impl<const N: usize> Builder<N> {
     /// whole box, use count mode, [`about_points`](Self::about_points),
     /// which picks the radius instead.
     ///
-    /// `cap` is a `u64`, `usize`, `u32`, an integer literal, `None` or
-    /// `Some(u64)` ([`PointCap`]); a negative literal makes
-    /// [`build`](Self::build) fail with [`Error::InvalidPointCount`].
+    /// `u64::MAX` means no cap. The cap is unsigned, so a negative one does
+    /// not compile:
+    /// ```compile_fail
+    /// # use bridson::{Domain, PoissonDisk2};
+    /// let builder = PoissonDisk2::builder(Domain::from_extent([1.0, 1.0]).unwrap(), 0.1);
+    /// let _ = builder.max_points(-1);
+    /// ```
     #[must_use]
-    pub fn max_points(mut self, cap: impl PointCap) -> Self {
-        match to_cap(cap) {
-            Ok(cap) => {
-                self.max_points = cap;
-                self.negative_cap = false;
-            }
-            Err(()) => self.negative_cap = true,
-        }
+    pub fn max_points(mut self, cap: u64) -> Self {
+        self.max_points = (cap != u64::MAX).then_some(cap);
         self
     }
 
@@ -264,23 +261,21 @@ impl<const N: usize> Builder<N> {
     ///
     /// This is the tool for "about `n` well-spread points": unlike a
     /// [`max_points`](Self::max_points) cap, it covers the whole box.
-    /// `n` is a `u64`, `usize`, `u32` or an integer literal
-    /// ([`PointCount`]); 0 or a negative literal makes `build` fail with
-    /// [`Error::InvalidPointCount`]. [`PoissonDisk::radius`] tells the
+    /// `n = 0` makes `build` fail with [`Error::InvalidPointCount`]. [`PoissonDisk::radius`] tells the
     /// radius chosen.
     ///
     /// # Example: about 5 000 points in a periodic 3 × 1 box
     /// ```
     /// use bridson::{Domain, PoissonDisk2};
     /// let domain = Domain::from_extent([3.0, 1.0])?.with_periodic([true; 2]);
-    /// let sampler = PoissonDisk2::about_points(domain, 5000).build()?;
+    /// let sampler = PoissonDisk2::about_points(domain, 5000)?;
     /// let n = sampler.generate_seeded(1)?.len();
     /// assert!((4900..=5100).contains(&n), "{n} points at r = {}", sampler.radius());
     /// # Ok::<(), bridson::Error>(())
     /// ```
     #[must_use]
-    pub fn about_points(mut self, n: impl PointCount) -> Self {
-        self.about_points = Some(to_count(n).unwrap_or(0));
+    pub fn about_points(mut self, n: u64) -> Self {
+        self.about_points = Some(n);
         self
     }
 
@@ -289,18 +284,17 @@ impl<const N: usize> Builder<N> {
     /// # Errors
     /// [`Error::ZeroDimension`] if `N == 0`; the [`Domain::new`] errors if
     /// the domain was deserialised from bad values;
-    /// [`Error::InvalidPointCount`] if count mode asks for 0 points (or a
-    /// negative number); [`Error::CountAttemptsOutOfRange`] if it does in
+    /// [`Error::InvalidPointCount`] if count mode asks for 0 points;
+    /// [`Error::CountAttemptsOutOfRange`] if it does in
     /// 2-D or 3-D with `k` outside `3 ..= 1000`; [`Error::InvalidRadius`] if the radius (given, or
     /// derived from the count) is NaN, infinite, `<= 0` or outside
     /// `1e-150 ..= 1e150`; [`Error::ZeroAttempts`] if `k == 0`;
     /// [`Error::TooManyAttempts`] if `k > MAX_ATTEMPTS`;
-    /// [`Error::InvalidPointCount`] if the point cap was negative;
     /// [`Error::BoxTooWide`] if the box spans more than 2⁴⁰ radii;
     /// [`Error::GridTooLarge`] if what a grid allocates before its first
     /// point is over the budget (a dense grid asked for with a tiny radius,
     /// or a budget too small for a single point). Whether the points fit is
-    /// known only as they come: see [`Iter::error`].
+    /// known only as they come: see [`Points::error`].
     pub fn build(self) -> Result<PoissonDisk<N>, Error> {
         if N == 0 {
             return Err(Error::ZeroDimension);
@@ -328,9 +322,6 @@ impl<const N: usize> Builder<N> {
             }
         };
         check_radius_and_attempts(radius, self.attempts)?;
-        if self.negative_cap {
-            return Err(Error::InvalidPointCount);
-        }
         let plan = plan(
             &domain,
             radius,
@@ -365,15 +356,15 @@ pub(crate) fn check_radius_and_attempts(radius: f64, attempts: u32) -> Result<()
 }
 
 #[cfg(feature = "serde")]
-impl<const N: usize> TryFrom<Builder<N>> for PoissonDisk<N> {
+impl<const N: usize> TryFrom<PoissonDiskBuilder<N>> for PoissonDisk<N> {
     type Error = Error;
-    fn try_from(builder: Builder<N>) -> Result<Self, Error> {
+    fn try_from(builder: PoissonDiskBuilder<N>) -> Result<Self, Error> {
         builder.build()
     }
 }
 
 #[cfg(feature = "serde")]
-impl<const N: usize> From<PoissonDisk<N>> for Builder<N> {
+impl<const N: usize> From<PoissonDisk<N>> for PoissonDiskBuilder<N> {
     fn from(sampler: PoissonDisk<N>) -> Self {
         sampler.config
     }
@@ -385,14 +376,14 @@ impl<const N: usize> PoissonDisk<N> {
     /// 1 GiB grid budget, no point cap.
     ///
     /// # Errors
-    /// As [`Builder::build`].
+    /// As [`PoissonDiskBuilder::build`].
     pub fn new(domain: Domain<N>, radius: f64) -> Result<Self, Error> {
         Self::builder(domain, radius).build()
     }
 
-    /// Settings to adjust before [`Builder::build`] checks them together.
-    pub fn builder(domain: Domain<N>, radius: f64) -> Builder<N> {
-        Builder {
+    /// Settings to adjust before [`PoissonDiskBuilder::build`] checks them together.
+    pub fn builder(domain: Domain<N>, radius: f64) -> PoissonDiskBuilder<N> {
+        PoissonDiskBuilder {
             domain,
             radius,
             about_points: None,
@@ -401,20 +392,28 @@ impl<const N: usize> PoissonDisk<N> {
             layout: GridLayout::default(),
             max_grid_bytes: DEFAULT_MAX_GRID_BYTES,
             max_points: None,
-            negative_cap: false,
         }
     }
 
-    /// Settings for about `n` points in `domain` instead of a radius
-    /// (count mode, [`Builder::about_points`]), to adjust before
-    /// [`Builder::build`] derives the radius.
-    pub fn about_points(domain: Domain<N>, n: impl PointCount) -> Builder<N> {
+    /// A sampler of `domain` that makes about `n` points (count mode, see
+    /// [`PoissonDiskBuilder::about_points`]) with the defaults otherwise.
+    ///
+    /// # Errors
+    /// As [`PoissonDiskBuilder::build`]: [`Error::InvalidPointCount`] if
+    /// `n == 0`, [`Error::InvalidRadius`] if no radius gives `n` points.
+    pub fn about_points(domain: Domain<N>, n: u64) -> Result<Self, Error> {
+        Self::about_points_builder(domain, n).build()
+    }
+
+    /// Settings for about `n` points in `domain` instead of a radius, to
+    /// adjust before [`PoissonDiskBuilder::build`] derives the radius.
+    pub fn about_points_builder(domain: Domain<N>, n: u64) -> PoissonDiskBuilder<N> {
         Self::builder(domain, f64::NAN).about_points(n)
     }
 
     /// The settings this sampler was built from, to adjust and rebuild.
     /// In count mode the radius is the one derived.
-    pub fn to_builder(&self) -> Builder<N> {
+    pub fn to_builder(&self) -> PoissonDiskBuilder<N> {
         self.config
     }
 
@@ -445,7 +444,7 @@ impl<const N: usize> PoissonDisk<N> {
     }
 
     /// The layout planned: [`GridLayout::Dense`] or [`GridLayout::Sparse`].
-    /// [`Iter::layout`] tells what was actually built.
+    /// [`Points::layout`] tells what was actually built.
     pub fn resolved_layout(&self) -> GridLayout {
         match self.plan {
             GridPlan::Dense(_) => GridLayout::Dense,
@@ -463,7 +462,7 @@ impl<const N: usize> PoissonDisk<N> {
         self.config.max_points
     }
 
-    /// The count asked for in count mode ([`Builder::about_points`]).
+    /// The count asked for in count mode ([`PoissonDiskBuilder::about_points`]).
     pub fn requested_count(&self) -> Option<u64> {
         self.config.about_points
     }
@@ -472,7 +471,7 @@ impl<const N: usize> PoissonDisk<N> {
     /// against the budget by `build()`: for the dense layout its cells and
     /// search stencils (a bound on their peak while built), for the sparse
     /// one a single point's share. What the points take comes on top, and
-    /// is counted as they come ([`Iter::heap_bytes`]).
+    /// is counted as they come ([`Points::heap_bytes`]).
     pub fn grid_bytes(&self) -> u64 {
         match self.plan {
             GridPlan::Dense(d) => d.bytes,
@@ -484,21 +483,21 @@ impl<const N: usize> PoissonDisk<N> {
     /// keep using your generator afterwards.
     ///
     /// The set grows outward from its first point, so a prefix of the
-    /// stream (`take(n)`, or a [`max_points`](Builder::max_points) cap) is a
+    /// stream (`take(n)`, or a [`max_points`](PoissonDiskBuilder::max_points) cap) is a
     /// compact blob, not `n` points spread over the box: for those, use
-    /// count mode ([`Builder::about_points`]) and take the whole stream.
+    /// count mode ([`PoissonDiskBuilder::about_points`]) and take the whole stream.
     ///
     /// The grid is allocated here. Should the dense allocation fail, the
     /// sampler falls back to the sparse layout (same points) rather than
-    /// abort; [`Iter::layout`] reports it.
-    pub fn iter<R: Rng>(&self, rng: R) -> Iter<N, R> {
+    /// abort; [`Points::layout`] reports it.
+    pub fn iter<R: Rng>(&self, rng: R) -> Points<N, R> {
         self.iter_in(rng, Everywhere)
     }
 
     /// As [`iter`](Self::iter), with every new point inside `region`.
-    fn iter_in<R: Rng, G: Region<N>>(&self, rng: R, region: G) -> Iter<N, R, G> {
+    fn iter_in<R: Rng, G: Region<N>>(&self, rng: R, region: G) -> Points<N, R, G> {
         let c = &self.config;
-        Iter {
+        Points {
             rng,
             region,
             domain: c.domain,
@@ -545,7 +544,7 @@ impl<const N: usize> PoissonDisk<N> {
     /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.05)?;
     /// let disc = |p: &[f64; 2]| (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) < 0.16;
     /// let fixed = [[0.5, 0.5], [0.6, 0.5]];
-    /// let points: Vec<[f64; 2]> = sampler.iter_with(7, disc, &fixed)?.collect();
+    /// let points: Vec<[f64; 2]> = sampler.iter_with_seeded(7, disc, &fixed)?.collect();
     /// assert!(points.len() > 100);
     /// for p in &points {
     ///     assert!(disc(p));
@@ -555,25 +554,12 @@ impl<const N: usize> PoissonDisk<N> {
     /// }
     /// # Ok::<(), bridson::Error>(())
     /// ```
-    pub fn iter_with<G: Region<N>>(
-        &self,
-        seed: u64,
-        region: G,
-        fixed: &[[f64; N]],
-    ) -> Result<Iter<N, DefaultRng, G>, Error> {
-        self.iter_with_rng(seeded_rng(seed), region, fixed)
-    }
-
-    /// As [`iter_with`](Self::iter_with), drawing from `rng`.
-    ///
-    /// # Errors
-    /// As [`iter_with`](Self::iter_with).
-    pub fn iter_with_rng<R: Rng, G: Region<N>>(
+    pub fn iter_with<R: Rng, G: Region<N>>(
         &self,
         rng: R,
         region: G,
         fixed: &[[f64; N]],
-    ) -> Result<Iter<N, R, G>, Error> {
+    ) -> Result<Points<N, R, G>, Error> {
         let mut it = self.iter_in(rng, region);
         for (index, p) in fixed.iter().enumerate() {
             let bad = Error::InvalidFixedPoint { index };
@@ -606,9 +592,24 @@ impl<const N: usize> PoissonDisk<N> {
         Ok(it)
     }
 
+    /// As [`iter_with`](Self::iter_with), drawing from [`DefaultRng`]
+    /// seeded with `seed`: the same seed gives the same points on every run
+    /// and platform.
+    ///
+    /// # Errors
+    /// As [`iter_with`](Self::iter_with).
+    pub fn iter_with_seeded<G: Region<N>>(
+        &self,
+        seed: u64,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<Points<N, DefaultRng, G>, Error> {
+        self.iter_with(seeded_rng(seed), region, fixed)
+    }
+
     /// Points in generation order from [`DefaultRng`] seeded with `seed`:
     /// the same seed gives the same points on every run and platform.
-    pub fn iter_seeded(&self, seed: u64) -> Iter<N, DefaultRng> {
+    pub fn iter_seeded(&self, seed: u64) -> Points<N, DefaultRng> {
         self.iter(seeded_rng(seed))
     }
 
@@ -617,7 +618,7 @@ impl<const N: usize> PoissonDisk<N> {
     /// # Errors
     /// [`Error::MemoryBudgetExceeded`] if the run outgrew the memory budget
     /// before it ended. To keep the points made up to then (a valid, but
-    /// incomplete, set), use [`iter`](Self::iter) and [`Iter::error`].
+    /// incomplete, set), use [`iter`](Self::iter) and [`Points::error`].
     pub fn generate<R: Rng>(&self, rng: R) -> Result<Vec<[f64; N]>, Error> {
         let mut points = self.iter(rng);
         let all = points.by_ref().collect();
@@ -653,7 +654,7 @@ impl<const N: usize> PoissonDisk<N> {
 /// `G` is the region new points must lie in ([`Everywhere`] unless the run
 /// came from [`PoissonDisk::iter_with`]).
 #[derive(Debug)]
-pub struct Iter<const N: usize, R, G = Everywhere> {
+pub struct Points<const N: usize, R, G = Everywhere> {
     rng: R,
     region: G,
     domain: Domain<N>,
@@ -678,11 +679,11 @@ pub struct Iter<const N: usize, R, G = Everywhere> {
     /// [`State::grow_cached`]).
     next_pick: [Option<usize>; 2],
     /// The first point of a plain run and the picks around it left
-    /// ([`Iter::again_around_first`]).
+    /// ([`Points::again_around_first`]).
     first_alone: Option<([f64; N], u32)>,
 }
 
-impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
+impl<const N: usize, R: Rng, G: Region<N>> Iterator for Points<N, R, G> {
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
@@ -712,9 +713,9 @@ impl<const N: usize, R: Rng, G: Region<N>> Iterator for Iter<N, R, G> {
     }
 }
 
-impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Iter<N, R, G> {}
+impl<const N: usize, R: Rng, G: Region<N>> FusedIterator for Points<N, R, G> {}
 
-impl<const N: usize, R: Rng, G: Region<N>> Iter<N, R, G> {
+impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
     /// The next point of Bridson's loop (the first point on the first
     /// call), or `None` when the active list runs empty, the budget is hit
     /// or no first point fits the region.
@@ -809,7 +810,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Iter<N, R, G> {
 /// `64·k` throws.
 const FIRST_POINT_PICKS: u32 = 64;
 
-impl<const N: usize, R, G> Iter<N, R, G> {
+impl<const N: usize, R, G> Points<N, R, G> {
     /// Whether a run that is ending with its first point alone gets
     /// another pick around it (then the point is active again): up to
     /// [`FIRST_POINT_PICKS`] picks in all. A first point's throws fail only
@@ -832,7 +833,7 @@ impl<const N: usize, R, G> Iter<N, R, G> {
     }
 }
 
-impl<const N: usize, R, G> Iter<N, R, G> {
+impl<const N: usize, R, G> Points<N, R, G> {
     /// Why the stream ended before the domain was full, if it did:
     /// [`Error::MemoryBudgetExceeded`] when storing the next point would
     /// have taken the run's memory past the budget. `None` while the stream
@@ -879,7 +880,7 @@ impl<const N: usize, R, G> Iter<N, R, G> {
     }
 }
 
-/// The parts of [`Iter`] the growth loop mutates, borrowed apart from the
+/// The parts of [`Points`] the growth loop mutates, borrowed apart from the
 /// grid so the loop can be monomorphised per grid layout.
 struct State<'a, const N: usize, R, G> {
     rng: &'a mut R,
@@ -1133,7 +1134,7 @@ mod tests {
     #[test]
     fn cap_stops_the_stream() {
         let s = PoissonDisk2::builder(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01)
-            .max_points(Some(10))
+            .max_points(10)
             .build()
             .unwrap();
         let mut it = s.iter_seeded(1);
@@ -1174,7 +1175,7 @@ mod tests {
             }),
             "generate reports it"
         );
-        let capped = uncapped.to_builder().max_points(Some(100)).build().unwrap();
+        let capped = uncapped.to_builder().max_points(100).build().unwrap();
         let mut it = capped.iter_seeded(3);
         assert_eq!(it.by_ref().count(), 100, "capped count");
         assert_eq!(it.error(), None, "a cap is no error");

@@ -1,4 +1,4 @@
-//! Count mode (`Builder::about_points`): the count made is within 2 % of
+//! Count mode (`PoissonDiskBuilder::about_points`): the count made is within 2 % of
 //! the count asked for, from 1 000 points up, in 2-D and 3-D, for both
 //! candidate kinds, bounded and periodic axes, over box shapes down to the
 //! documented thickness (4 radii on every axis at the derived radius).
@@ -42,7 +42,7 @@ fn relative_error_at<const N: usize>(
     let domain = Domain::from_extent(extent)
         .expect("box")
         .with_periodic(periodic);
-    let sampler = PoissonDisk::<N>::about_points(domain, n)
+    let sampler = PoissonDisk::<N>::about_points_builder(domain, n)
         .candidates(kind)
         .attempts(attempts)
         .build()
@@ -173,14 +173,18 @@ fn attempts_outside_the_tables_are_errors_in_2d_and_3d() {
     let cube = Domain::from_extent([1.0; 3]).expect("box");
     let out_of_range = Err(Error::CountAttemptsOutOfRange { min: 3, max: 1000 });
     for k in [1, 2, 1001, 65_536] {
-        let square = PoissonDisk::about_points(square, 1000).attempts(k).build();
+        let square = PoissonDisk::about_points_builder(square, 1000)
+            .attempts(k)
+            .build();
         assert_eq!(square.map(|s| s.radius()), out_of_range, "2-D k = {k}");
-        let cube = PoissonDisk::about_points(cube, 1000).attempts(k).build();
+        let cube = PoissonDisk::about_points_builder(cube, 1000)
+            .attempts(k)
+            .build();
         assert_eq!(cube.map(|s| s.radius()), out_of_range, "3-D k = {k}");
     }
     for k in [3, 1000] {
         assert!(
-            PoissonDisk::about_points(square, 1000)
+            PoissonDisk::about_points_builder(square, 1000)
                 .attempts(k)
                 .build()
                 .is_ok(),
@@ -189,7 +193,7 @@ fn attempts_outside_the_tables_are_errors_in_2d_and_3d() {
     }
     let four = Domain::from_extent([1.0; 4]).expect("box");
     assert!(
-        PoissonDisk::about_points(four, 1000)
+        PoissonDisk::about_points_builder(four, 1000)
             .attempts(2)
             .build()
             .is_ok(),
@@ -203,10 +207,10 @@ fn attempts_outside_the_tables_are_errors_in_2d_and_3d() {
 fn the_radius_follows_the_box_and_reproduces() {
     let small = Domain::from_extent([1.0, 1.0]).expect("box");
     let large = Domain::from_extent([2.0, 2.0]).expect("box");
-    let a = PoissonDisk::about_points(small, 3000)
+    let a = PoissonDisk::about_points_builder(small, 3000)
         .build()
         .expect("valid");
-    let b = PoissonDisk::about_points(large, 3000)
+    let b = PoissonDisk::about_points_builder(large, 3000)
         .build()
         .expect("valid");
     let ratio = b.radius() / a.radius();
@@ -224,25 +228,24 @@ fn the_radius_follows_the_box_and_reproduces() {
         .build()
         .expect("valid");
     assert_eq!(overridden.radius(), a.radius(), "the count wins");
-    let counts: [usize; 2] = [3000, 3000];
-    let from_usize = PoissonDisk::about_points(small, counts[0])
-        .build()
-        .expect("valid");
-    assert_eq!(from_usize.radius(), a.radius(), "usize count");
+    let direct = PoissonDisk::about_points(small, 3000).expect("valid");
+    assert_eq!(direct.radius(), a.radius(), "about_points is the builder's");
 }
 
 #[test]
 fn bad_counts_are_errors() {
     let square = Domain::from_extent([1.0, 1.0]).expect("box");
-    for (builder, what) in [
-        (PoissonDisk::about_points(square, 0), "zero"),
-        (PoissonDisk::about_points(square, -5), "negative"),
-    ] {
+    for (builder, what) in [(PoissonDisk::about_points_builder(square, 0), "builder")] {
         assert_eq!(builder.build(), Err(Error::InvalidPointCount), "{what}");
     }
+    assert_eq!(
+        PoissonDisk::about_points(square, 0).map(|s| s.radius()),
+        Err(Error::InvalidPointCount),
+        "zero"
+    );
     // A count past what radii down to 1e-150 can give.
     let huge = Domain::from_extent([1e-145, 1e-145]).expect("box");
-    let tiny = PoissonDisk::about_points(huge, u64::MAX).build();
+    let tiny = PoissonDisk::about_points_builder(huge, u64::MAX).build();
     assert_eq!(
         tiny.map(|s| s.radius()),
         Err(Error::InvalidRadius),
@@ -251,14 +254,16 @@ fn bad_counts_are_errors() {
     // No table past 8-D.
     let nine = Domain::from_extent([1.0; 9]).expect("box");
     assert_eq!(
-        PoissonDisk::about_points(nine, 1000)
+        PoissonDisk::about_points_builder(nine, 1000)
             .build()
             .map(|s| s.radius()),
         Err(Error::InvalidRadius),
         "9-D"
     );
     // Far below the documented range the count is only rough, but valid.
-    let one = PoissonDisk::about_points(square, 1).build().expect("valid");
+    let one = PoissonDisk::about_points_builder(square, 1)
+        .build()
+        .expect("valid");
     let made = one.generate_seeded(1).expect("points").len();
     assert!((1..=5).contains(&made), "about one point: {made}");
 }

@@ -525,7 +525,7 @@ fn tiny_radius_in_a_huge_box_stops_at_the_budget() {
 #[test]
 fn a_point_cap_makes_the_huge_box_complete() {
     let capped = PoissonDisk2::builder(huge_box(), 1e-3)
-        .max_points(Some(1000))
+        .max_points(1000)
         .build()
         .expect("the sparse grid starts empty");
     assert_eq!(
@@ -565,7 +565,7 @@ fn the_budget_is_checked_by_build() {
     }
     for budget in [1 << 12, 1 << 16, 1 << 20, 1 << 24, DEFAULT_MAX_GRID_BYTES] {
         for layout in LAYOUTS {
-            for cap in [None, Some(100)] {
+            for cap in [u64::MAX, 100] {
                 let built = PoissonDisk2::builder(unit_square(), 0.002)
                     .layout(layout)
                     .max_grid_bytes(budget)
@@ -579,7 +579,11 @@ fn the_budget_is_checked_by_build() {
                     );
                     if budget <= 1 << 20 {
                         let (n, error) = run_within_budget(&s, 2);
-                        let complete = cap.map_or(error.is_none(), |c| n as u64 == c);
+                        let complete = if cap == u64::MAX {
+                            error.is_none()
+                        } else {
+                            n as u64 == cap
+                        };
                         assert!(
                             complete || matches!(error, Some(Error::MemoryBudgetExceeded { .. })),
                             "{layout:?}, cap {cap:?}, budget {budget}: {n} points, {error:?}"
@@ -596,13 +600,13 @@ fn the_budget_is_checked_by_build() {
 fn a_cap_of_u64_max_is_no_cap() {
     let builder = PoissonDisk2::builder(unit_square(), 0.05);
     let uncapped = builder.build().expect("valid");
-    let capped = builder.max_points(Some(u64::MAX)).build().expect("valid");
+    let capped = builder.max_points(u64::MAX).build().expect("valid");
     assert_eq!(
         capped.generate_seeded(8).unwrap(),
         uncapped.generate_seeded(8).unwrap(),
         "same points"
     );
-    let seven = builder.max_points(Some(7)).build().expect("valid");
+    let seven = builder.max_points(7).build().expect("valid");
     assert_eq!(seven.iter_seeded(8).size_hint(), (0, Some(7)), "size_hint");
     assert_eq!(
         seven.generate_seeded(8).unwrap(),
@@ -653,7 +657,7 @@ fn a_small_budget_stops_the_run_and_a_cap_completes_it() {
         "{n} points, {error:?}"
     );
     let capped = small
-        .max_points(Some(1000))
+        .max_points(1000)
         .build()
         .expect("a cap of 1000 points fits 1 MiB");
     assert!(capped.grid_bytes() <= budget, "planned within budget");
@@ -670,7 +674,7 @@ fn forced_dense_over_budget_is_grid_too_large() {
     let budget = 1 << 20;
     // Capped, so the sparse grid fits the small budget and Auto is fine...
     let small = PoissonDisk2::builder(unit_square(), 0.001)
-        .max_points(Some(100))
+        .max_points(100)
         .max_grid_bytes(budget);
     let auto = small.build().expect("sparse fits under the cap");
     assert_eq!(
@@ -823,13 +827,6 @@ fn display_messages_name_the_failed_condition() {
                 .expect_err("k too large"),
             vec!["attempts".into(), format!("at most {MAX_ATTEMPTS}")],
         ),
-        (
-            PoissonDisk2::builder(unit_square(), 0.1)
-                .max_points(-3)
-                .build()
-                .expect_err("negative cap"),
-            vec!["cap".into(), "negative".into()],
-        ),
     ];
     for (error, words) in cases {
         let message = error.to_string();
@@ -970,57 +967,30 @@ fn periodic_axis_shorter_than_r() {
 #[test]
 fn a_zero_cap_yields_nothing() {
     let s = PoissonDisk2::builder(unit_square(), 0.1)
-        .max_points(Some(0))
+        .max_points(0)
         .build()
         .expect("valid");
     assert_eq!(s.generate_seeded(1).unwrap().len(), 0, "cap 0");
     assert_eq!(s.iter_seeded(1).size_hint(), (0, Some(0)), "size_hint");
 }
 
-/// A cap takes the integers users hold, and a negative literal (the only
-/// negative count the types allow) is refused by `build`, not by the setter;
-/// a later valid cap clears it.
+/// A cap is a `u64` (a negative one does not compile: the doctest on
+/// `max_points` holds that); a later cap replaces an earlier one, and
+/// `u64::MAX` means no cap.
 #[test]
-fn a_negative_cap_is_refused_by_build() {
+fn a_cap_is_unsigned_and_max_means_none() {
     let builder = PoissonDisk2::builder(unit_square(), 0.1);
-    assert_eq!(
-        builder.max_points(-1).build(),
-        Err(Error::InvalidPointCount),
-        "max_points(-1)"
-    );
-    assert_eq!(
-        builder.max_points(i32::MIN).build(),
-        Err(Error::InvalidPointCount),
-        "max_points(i32::MIN)"
-    );
-    assert_eq!(
-        builder
-            .max_points(-1)
-            .max_points(5)
-            .build()
-            .map(|s| s.max_points()),
-        Ok(Some(5)),
-        "a later cap replaces the negative one"
-    );
-    let held: usize = 12;
-    for (cap, name) in [
-        (builder.max_points(held), "usize"),
-        (builder.max_points(12_u32), "u32"),
-        (builder.max_points(12), "literal"),
-        (builder.max_points(Some(12)), "Some"),
-    ] {
-        let s = cap.build().expect("valid");
-        assert_eq!(s.max_points(), Some(12), "{name}");
-        assert_eq!(s.generate_seeded(2).unwrap().len(), 12, "{name}");
-    }
+    let s = builder.max_points(12).build().expect("valid");
+    assert_eq!(s.max_points(), Some(12), "cap 12");
+    assert_eq!(s.generate_seeded(2).unwrap().len(), 12, "cap 12 points");
     assert_eq!(
         builder
             .max_points(3)
-            .max_points(None)
+            .max_points(u64::MAX)
             .build()
             .map(|s| s.max_points()),
         Ok(None),
-        "None clears a cap"
+        "u64::MAX clears a cap"
     );
 }
 
@@ -1135,16 +1105,14 @@ fn extreme_inputs_never_panic() {
 fn box_wider_than_2_pow_40_radii_is_box_too_wide_even_with_a_cap() {
     let domain = Domain::from_extent([1.0, 1e6]).expect("valid box");
     let result = PoissonDisk2::builder(domain, 1e-7)
-        .max_points(Some(10))
+        .max_points(10)
         .max_grid_bytes(u64::MAX)
         .build();
     let err = result.expect_err("1e13 radii wide must be refused");
     assert_eq!(err, Error::BoxTooWide { axis: 1 }, "variant and axis");
     assert!(err.to_string().contains("2^40"), "message: {err}");
     // 1e12 radii (< 2^40) with a cap is fine.
-    let ok = PoissonDisk2::builder(domain, 1e-6)
-        .max_points(Some(10))
-        .build();
+    let ok = PoissonDisk2::builder(domain, 1e-6).max_points(10).build();
     assert!(ok.is_ok(), "{ok:?}");
 }
 
@@ -1155,16 +1123,14 @@ fn box_too_wide_starts_just_past_2_pow_40_radii() {
     let limit = 2f64.powi(40);
     let at = Domain::from_extent([limit, 1.0]).expect("valid box");
     let s = PoissonDisk2::builder(at, 1.0)
-        .max_points(Some(20))
+        .max_points(20)
         .build()
         .expect("exactly 2^40 radii is accepted");
     assert_eq!(s.resolved_layout(), GridLayout::Sparse, "sparse");
     assert_eq!(assert_valid(&s, 12, usize::MAX), 20, "the cap is reached");
     let past = Domain::from_extent([1.0, limit.next_up()]).expect("valid box");
     assert_eq!(
-        PoissonDisk2::builder(past, 1.0)
-            .max_points(Some(20))
-            .build(),
+        PoissonDisk2::builder(past, 1.0).max_points(20).build(),
         Err(Error::BoxTooWide { axis: 1 }),
         "one ulp past 2^40 radii"
     );

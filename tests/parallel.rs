@@ -57,7 +57,7 @@ fn check_guarantee<const N: usize>(sampler: &PoissonDisk<N>, seed: u64, t: usize
         d.periodic()
     );
     let points = sampler
-        .generate_parallel(seed, threads(t))
+        .generate_parallel_seeded(seed, threads(t))
         .unwrap_or_else(|e| panic!("{ctx}: {e}"));
     if let Err(report) = common::check_points(&points, r, d.lo(), d.hi(), d.periodic()) {
         panic!("{ctx}: {report}");
@@ -102,9 +102,9 @@ proptest! {
     #[test]
     fn threads_never_change_the_points(seed: u64, periodic in 0u8..4, r in 0.004f64..0.03) {
         let s = sampler::<2>(0.3, r, periodic);
-        let one = s.generate_parallel(seed, threads(1)).expect("points");
+        let one = s.generate_parallel_seeded(seed, threads(1)).expect("points");
         for t in [2, 3, 64] {
-            let many = s.generate_parallel(seed, threads(t)).expect("points");
+            let many = s.generate_parallel_seeded(seed, threads(t)).expect("points");
             prop_assert!(one == many, "seed {seed} r {r} periodic {periodic}: threads 1 and {t} differ");
         }
     }
@@ -127,7 +127,7 @@ fn many_slabs_and_the_wrap_keep_the_guarantee() {
 #[test]
 fn points_come_slab_by_slab() {
     let s = sampler::<2>(0.05, 0.004, 0);
-    let points = s.generate_parallel(9, threads(2)).expect("points");
+    let points = s.generate_parallel_seeded(9, threads(2)).expect("points");
     // 250 radii: 4 pairs, 8 slabs of 1/8.
     let slab = |p: &[f64; 2]| (1..8).filter(|&i| p[0] >= f64::from(i) / 8.0).count();
     assert!(
@@ -142,7 +142,7 @@ fn points_come_slab_by_slab() {
 fn one_slab_is_an_ordinary_run() {
     let s = sampler::<3>(1.0, 0.04, 0b101);
     assert_eq!(
-        s.generate_parallel(4, threads(3)).expect("points"),
+        s.generate_parallel_seeded(4, threads(3)).expect("points"),
         s.generate_seeded(4).expect("points"),
         "25 radii across"
     );
@@ -156,7 +156,7 @@ fn a_point_cap_is_refused() {
         .build()
         .expect("valid");
     assert_eq!(
-        capped.generate_parallel(1, threads(2)),
+        capped.generate_parallel_seeded(1, threads(2)),
         Err(Error::PointCapInParallel),
         "a cap keeps a prefix of one stream"
     );
@@ -165,7 +165,7 @@ fn a_point_cap_is_refused() {
         .build()
         .expect("valid");
     assert!(
-        uncapped.generate_parallel(1, threads(2)).is_ok(),
+        uncapped.generate_parallel_seeded(1, threads(2)).is_ok(),
         "the cap u64::MAX is no cap"
     );
 }
@@ -180,11 +180,11 @@ fn the_budget_is_shared_between_slabs() {
             .max_grid_bytes(budget)
             .build();
         let Ok(s) = s else { continue };
-        let one = s.generate_parallel(2, threads(1));
+        let one = s.generate_parallel_seeded(2, threads(1));
         assert!(one.is_err(), "budget {budget}: too small for 40 000 points");
         assert_eq!(
             one,
-            s.generate_parallel(2, threads(3)),
+            s.generate_parallel_seeded(2, threads(3)),
             "budget {budget}: the same error on 3 threads"
         );
     }
@@ -199,10 +199,12 @@ fn the_budget_is_shared_between_slabs() {
         .layout(GridLayout::Sparse)
         .build()
         .expect("valid");
-    let points = dense.generate_parallel(2, threads(2)).expect("fits");
+    let points = dense.generate_parallel_seeded(2, threads(2)).expect("fits");
     assert_eq!(
         points,
-        sparse.generate_parallel(2, threads(2)).expect("fits"),
+        sparse
+            .generate_parallel_seeded(2, threads(2))
+            .expect("fits"),
         "the layout changes no point"
     );
 }
@@ -211,10 +213,13 @@ fn the_budget_is_shared_between_slabs() {
 #[test]
 fn count_mode_uses_its_radius() {
     let domain = Domain::from_extent([2.0, 1.0]).expect("box");
-    let s = PoissonDisk::about_points(domain, 20_000)
+    let s = PoissonDisk::about_points_builder(domain, 20_000)
         .build()
         .expect("valid");
-    let n = s.generate_parallel(6, threads(2)).expect("points").len();
+    let n = s
+        .generate_parallel_seeded(6, threads(2))
+        .expect("points")
+        .len();
     assert!(
         (19_400..=20_600).contains(&n),
         "{n} points for about 20 000 at r = {}",

@@ -228,14 +228,14 @@ fn check_case<const N: usize>(c: &Case<N>) -> Result<(), TestCaseError> {
     let cap = fraction_of(c.cap_fraction, n);
     let capped = sparse
         .to_builder()
-        .max_points(Some(u64::try_from(cap).expect("small")))
+        .max_points(u64::try_from(cap).expect("small"))
         .build()
         .map_err(|e| TestCaseError::fail(format!("{ctx}: cap {cap} rejected: {e}")))?
         .generate_seeded(c.seed)
         .map_err(|e| TestCaseError::fail(format!("{ctx}: cap {cap}: {e}")))?;
     prop_assert!(
         capped[..] == points[..cap.min(n)],
-        "{}: max_points(Some({})) gave {} points, not the first {} of {}",
+        "{}: max_points({}) gave {} points, not the first {} of {}",
         ctx,
         cap,
         capped.len(),

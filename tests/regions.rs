@@ -70,7 +70,7 @@ fn ball_around_fixed<const N: usize>(
         d2 < 0.35 * 0.35
     };
     let new: Vec<[f64; N]> = sampler
-        .iter_with(seed, ball, &fixed)
+        .iter_with_seeded(seed, ball, &fixed)
         .expect("valid fixed points")
         .collect();
     let ctx = format!("{N}-D seed {seed} {kind:?} {layout:?} periodic {periodic}");
@@ -118,7 +118,7 @@ fn a_polygon_mask_with_no_fixed_points() {
     let triangle = |p: &[f64; 2]| p[1] < p[0] && p[1] < 2.0 - p[0];
     for seed in 0..4 {
         let new: Vec<[f64; 2]> = sampler
-            .iter_with(seed, triangle, &[])
+            .iter_with_seeded(seed, triangle, &[])
             .expect("valid")
             .collect();
         // Area 1, about 0.6 / r² points.
@@ -127,13 +127,16 @@ fn a_polygon_mask_with_no_fixed_points() {
     }
     let nowhere = |_: &[f64; 2]| false;
     assert_eq!(
-        sampler.iter_with(1, nowhere, &[]).expect("valid").count(),
+        sampler
+            .iter_with_seeded(1, nowhere, &[])
+            .expect("valid")
+            .count(),
         0,
         "an empty region"
     );
     // The plain run is the `Everywhere` region.
     let everywhere: Vec<[f64; 2]> = sampler
-        .iter_with(9, bridson::Everywhere, &[])
+        .iter_with_seeded(9, bridson::Everywhere, &[])
         .expect("valid")
         .collect();
     assert_eq!(
@@ -159,21 +162,21 @@ fn bad_fixed_points_are_errors() {
         ),
     ] {
         assert_eq!(
-            sampler.iter_with(1, any, &fixed).err(),
+            sampler.iter_with_seeded(1, any, &fixed).err(),
             Some(Error::InvalidFixedPoint { index }),
             "{what}"
         );
     }
     // Exactly r apart is allowed, as between sampled points.
     let ok = [[0.2, 0.2], [0.2, 0.30000000000000004]];
-    assert!(sampler.iter_with(1, any, &ok).is_ok(), "r apart");
+    assert!(sampler.iter_with_seeded(1, any, &ok).is_ok(), "r apart");
     let tight = PoissonDisk2::builder(domain, 0.001)
         .max_grid_bytes(1 << 12)
         .layout(GridLayout::Sparse)
         .build()
         .expect("valid");
     let many: Vec<[f64; 2]> = (0..400).map(|i| [f64::from(i) / 400.0, 0.5]).collect();
-    let over = tight.iter_with(1, any, &many).err();
+    let over = tight.iter_with_seeded(1, any, &many).err();
     assert!(
         matches!(over, Some(Error::MemoryBudgetExceeded { points: 0, .. })),
         "fixed points over the budget: {over:?}"
@@ -206,7 +209,7 @@ fn chunk(
     let inside = move |p: &[f64; 2]| x <= p[0] && p[0] < x + 1.0 && y <= p[1] && p[1] < y + 1.0;
     let seed = (u64::from(i.cast_unsigned()) << 32) | u64::from(j.cast_unsigned());
     Ok(PoissonDisk2::new(grown, r)?
-        .iter_with(seed, inside, &fixed)?
+        .iter_with_seeded(seed, inside, &fixed)?
         .collect())
 }
 

@@ -4,8 +4,8 @@
 #![cfg(feature = "serde")]
 
 use bridson::{
-    Builder, Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_GRID_BYTES, DEFAULT_MAX_WINDOW_BYTES,
-    Domain, Error, GridLayout, PoissonDisk, PoissonDisk2, Scheme, Tiled, TiledBuilder,
+    Candidates, DEFAULT_ATTEMPTS, DEFAULT_MAX_GRID_BYTES, DEFAULT_MAX_WINDOW_BYTES, Domain, Error,
+    GridLayout, PoissonDisk, PoissonDisk2, PoissonDiskBuilder, Scheme, Tiled, TiledBuilder,
 };
 use serde_json::{Value, json};
 
@@ -17,7 +17,7 @@ fn sampler_2d() -> PoissonDisk2 {
         .attempts(12)
         .layout(GridLayout::Sparse)
         .max_grid_bytes(1 << 24)
-        .max_points(Some(500))
+        .max_points(500)
         .candidates(Candidates::Sphere)
         .build()
         .expect("valid sampler")
@@ -90,24 +90,25 @@ fn builder_round_trips_and_matches_the_sampler_form() {
         serde_json::to_string(&sampler).expect("serialises"),
         "a sampler is serialised as its settings"
     );
-    let back: Builder<2> = serde_json::from_str(&text).expect("deserialises");
+    let back: PoissonDiskBuilder<2> = serde_json::from_str(&text).expect("deserialises");
     assert_eq!(back, builder, "round trip through {text}");
     assert_eq!(back.build(), Ok(sampler), "rebuilds the same sampler");
 }
 
-/// A `Builder` is the unchecked form: it reads settings that `build` (and
+/// A `PoissonDiskBuilder` is the unchecked form: it reads settings that `build` (and
 /// deserialising a `PoissonDisk`) then rejects. Its domain is still checked.
 #[test]
 fn builder_defers_validation_to_build() {
     let bad_radius = with_field("radius", json!(-1.0));
-    let builder: Builder<2> = serde_json::from_value(bad_radius).expect("read unchecked");
+    let builder: PoissonDiskBuilder<2> =
+        serde_json::from_value(bad_radius).expect("read unchecked");
     assert_eq!(
         builder.build(),
         Err(Error::InvalidRadius),
         "checked by build"
     );
     let zero_k = with_field("attempts", json!(0));
-    let builder: Builder<2> = serde_json::from_value(zero_k).expect("read unchecked");
+    let builder: PoissonDiskBuilder<2> = serde_json::from_value(zero_k).expect("read unchecked");
     assert_eq!(
         builder.build(),
         Err(Error::ZeroAttempts),
@@ -117,7 +118,7 @@ fn builder_defers_validation_to_build() {
         "domain",
         json!({"lo": [0.0, 1.0], "hi": [1.0, 1.0], "periodic": [false, false]}),
     );
-    let message = match serde_json::from_value::<Builder<2>>(empty) {
+    let message = match serde_json::from_value::<PoissonDiskBuilder<2>>(empty) {
         Ok(b) => panic!("an empty domain was read: {b:?}"),
         Err(e) => e.to_string(),
     };
@@ -233,7 +234,7 @@ fn unknown_fields_are_rejected() {
     let misspelt = with_field("atempts", json!(5));
     for message in [
         error_of::<PoissonDisk2>(&misspelt),
-        error_of::<Builder<2>>(&misspelt),
+        error_of::<PoissonDiskBuilder<2>>(&misspelt),
     ] {
         assert_mentions(&message, &["unknown field", "atempts"]);
     }
@@ -512,7 +513,7 @@ fn tiled_is_validated_on_deserialise() {
 #[test]
 fn count_mode_round_trips() {
     let domain = Domain::from_extent([2.0, 1.0]).expect("box");
-    let builder = PoissonDisk2::about_points(domain, 800).candidates(Candidates::Sphere);
+    let builder = PoissonDisk2::about_points_builder(domain, 800).candidates(Candidates::Sphere);
     assert_eq!(
         serde_json::to_value(builder).expect("serialises"),
         json!({

@@ -79,7 +79,7 @@ fn check<const N: usize>(seed: u64, ratio: f64, periodic: bool, radial: bool, sp
         r_min + (r_max - r_min) * t
     };
     let points: Vec<[f64; N]> = sampler
-        .iter_varying(seed, r_min, field)
+        .iter_varying_seeded(seed, r_min, field)
         .expect("valid")
         .collect();
     let clamped = |p: &[f64; N]| field(p).clamp(r_min, r_max);
@@ -92,7 +92,7 @@ fn check<const N: usize>(seed: u64, ratio: f64, periodic: bool, radial: bool, sp
     // Maximal to k attempts is not checked here; density follows the field:
     // more points where r is small.
     let again: Vec<[f64; N]> = sampler
-        .iter_varying(seed, r_min, field)
+        .iter_varying_seeded(seed, r_min, field)
         .expect("valid")
         .collect();
     assert_eq!(again, points, "{ctx}: the seed reproduces");
@@ -123,7 +123,7 @@ fn bad_bounds_are_errors() {
     let field = |_: &[f64; 2]| 0.05;
     for r_min in [0.0, -1.0, f64::NAN, 0.2] {
         assert_eq!(
-            sampler.iter_varying(1, r_min, field).err(),
+            sampler.iter_varying_seeded(1, r_min, field).err(),
             Some(bridson::Error::InvalidRadius),
             "r_min {r_min}"
         );
@@ -131,7 +131,7 @@ fn bad_bounds_are_errors() {
     // A field outside its bounds is clamped; NaN is r_max.
     let wild = |p: &[f64; 2]| if p[0] < 0.5 { f64::NAN } else { 1e9 };
     let points: Vec<[f64; 2]> = sampler
-        .iter_varying(2, 0.05, wild)
+        .iter_varying_seeded(2, 0.05, wild)
         .expect("valid")
         .collect();
     assert!(

@@ -59,7 +59,7 @@ fn run_varying<const N: usize>(config: &Config, (r0, r1): (f64, f64)) -> Result<
     let slope = (r1 - r0) / extent;
     let field = move |p: &[f64; N]| r0 + slope * (p[0] - lo);
     let mut points = sampler
-        .iter_varying(config.seed, r0.min(r1), field)
+        .iter_varying_seeded(config.seed, r0.min(r1), field)
         .map_err(|e| Failure::Usage(e.to_string()))?;
     let domain = sampler.domain();
     let header = (sampler.radius(), domain.lo(), domain.hi());
@@ -122,12 +122,12 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
         })?
         .with_periodic(periodic);
     let builder = match config.count {
-        Some(n) => PoissonDisk::<N>::about_points(domain, n),
+        Some(n) => PoissonDisk::<N>::about_points_builder(domain, n),
         None => PoissonDisk::<N>::builder(domain, config.radius),
     };
     builder
         .attempts(config.attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS))
-        .max_points(config.max_points)
+        .max_points(config.max_points.unwrap_or(u64::MAX))
         .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
         .candidates(config.candidates)
         .build()
@@ -155,7 +155,7 @@ fn write_points<const N: usize, W: Write>(
     let header = (sampler.radius(), domain.lo(), domain.hi());
     if let Some(threads) = threads {
         let layout = sampler.resolved_layout();
-        return match sampler.generate_parallel(seed, threads) {
+        return match sampler.generate_parallel_seeded(seed, threads) {
             Ok(points) => {
                 let count = write_stream(out, format, header, points.into_iter())?;
                 Ok((count, start.elapsed(), layout, None))
@@ -420,7 +420,9 @@ mod tests {
         let line = "--dim 2 --radius 0.01 --extent 1,0.2 --seed 3 --threads 2";
         let c = config(line);
         let sampler = build::<2>(&c).unwrap();
-        let expected = sampler.generate_parallel(3, NonZeroUsize::MIN).unwrap();
+        let expected = sampler
+            .generate_parallel_seeded(3, NonZeroUsize::MIN)
+            .unwrap();
         assert_ne!(
             expected,
             sampler.generate_seeded(3).unwrap(),

@@ -261,7 +261,7 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
         .candidates(candidates)
         .layout(layout)
         .max_grid_bytes(budget)
-        .max_points(cap);
+        .max_points(cap.unwrap_or(u64::MAX));
     let sampler = match builder.build() {
         Ok(s) => s,
         Err(e) => {
@@ -287,7 +287,7 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
     let lowered = sampler
         .to_builder()
         .attempts(k.min(ATTEMPT_LIMIT))
-        .max_points(Some(gen_cap))
+        .max_points(gen_cap)
         .build();
     let Ok(lowered) = lowered else {
         panic!("{ctx}: lowering k and the cap made build() fail: {lowered:?}");

@@ -11,7 +11,7 @@
 
 use crate::batch::check_generate;
 use crate::common;
-use bridson::{Builder, Domain, Error, PoissonDisk, Tiled, TiledBuilder};
+use bridson::{Domain, Error, PoissonDisk, PoissonDiskBuilder, Tiled, TiledBuilder};
 
 /// Most points generated per execution.
 const POINT_LIMIT: u64 = 1000;
@@ -139,9 +139,11 @@ fn check<const N: usize>(data: &[u8]) {
             "N = {N}: a deserialised domain that Domain::new rejects"
         );
     }
-    let Some(sampler) =
-        read_checked::<PoissonDisk<N>, _>(data, &format!("N = {N}: "), Builder::<N>::build)
-    else {
+    let Some(sampler) = read_checked::<PoissonDisk<N>, _>(
+        data,
+        &format!("N = {N}: "),
+        PoissonDiskBuilder::<N>::build,
+    ) else {
         return;
     };
     let ctx = format!("N = {N}, {sampler:?}");
@@ -152,7 +154,7 @@ fn check<const N: usize>(data: &[u8]) {
     let lowered = sampler
         .to_builder()
         .attempts(sampler.attempts().min(ATTEMPT_LIMIT))
-        .max_points(Some(cap))
+        .max_points(cap)
         .build();
     let Ok(lowered) = lowered else {
         panic!("{ctx}: lowering k and the cap made build() fail: {lowered:?}");

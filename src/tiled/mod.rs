@@ -226,6 +226,7 @@ impl TiledBuilder {
     /// waves and the feedback, and `[0.0, 0.0, 0.0]` turns the
     /// correction off. Ignored outside exact mode.
     #[must_use]
+    #[doc(hidden)]
     pub fn exact_edge_bias(mut self, beta: [f64; 3]) -> Self {
         self.exact_bias = Some(beta);
         self
@@ -261,16 +262,16 @@ impl TiledBuilder {
     /// Candidate distribution (default [`Candidates::Annulus`]). Ignored in
     /// exact mode, whose sweep always draws on the annulus: its `k`, its
     /// oversampling and its edge correction were measured and calibrated
-    /// there, and they fail on the sphere. Before 2026-11-28 exact mode did
-    /// draw on the sphere when asked, and gave about 200 top-ups per 10⁶
-    /// points (the distance broken around each) and pixel-frequency power
-    /// up to 207 at `n = 4`. With settings of the sphere's own (`k = 3`,
+    /// there, and they fail on the sphere: drawn on the sphere, exact mode
+    /// gives about 200 top-ups per 10⁶ points (the distance broken around
+    /// each) and pixel-frequency power up to 207 at `n = 4`. With settings
+    /// of the sphere's own (`k = 3`,
     /// oversampling 1.3) the top-ups go and ρ rises to 0.696 (0.657 on the
     /// annulus), but elimination locks onto the pixel grid (at `n = 16`
     /// its in-pixel density jumps between two patterns as the correction
     /// moves by 0.01, so no correction cancels it), and random dropping's
     /// render error in the tracer study rose by up to 6.5 % over its own on
-    /// the annulus (README, "Exact mode on the sphere").
+    /// the annulus (the journal's "Exact mode's sweep on the sphere").
     #[must_use]
     pub fn candidates(mut self, candidates: Candidates) -> Self {
         self.candidates = candidates;
@@ -293,11 +294,11 @@ impl TiledBuilder {
     /// memory (the queue of active points, a row's gathered points, the
     /// per-pixel points past the first eight, exact mode's band of two
     /// rows being thinned) comes on top, also proportional to the width
-    /// and independent of the height. Measured with a counting allocator
-    /// (2026-11-28), the peak heap of a whole stream was 1.15–1.32 times
-    /// the window's bytes for the sweep and Ye's scheme at 4 and 64 points
-    /// per pixel, 1.3–2.0 times in exact mode at `n` = 1 and 4 (oversampling
-    /// up to 3), and 3.0 times at `n` = 24 and 64; `tests/stream_memory.rs`
+    /// and independent of the height. Under a counting allocator the peak
+    /// heap of a whole stream is 1.15–1.32 times the window's bytes for the
+    /// sweep and Ye's scheme at 4 and 64 points per pixel, 1.3–2.0 times in
+    /// exact mode at `n` = 1 and 4 (oversampling up to 3), and 3.0 times at
+    /// `n` = 24 and 64; `tests/stream_memory.rs`
     /// holds the stream near that, and its peak flat in the height. Leave
     /// room for that when the budget is what stands between a wide raster
     /// and the machine's memory.

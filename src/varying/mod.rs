@@ -36,6 +36,7 @@ use coarse::Coarse;
 use core::iter::FusedIterator;
 use levels::Levels;
 use lists::Lists;
+use rand::Rng;
 
 /// The conflict cache's unit, in units of the parent's radius (`r0 /
 /// r(p)`): its quick test serves candidates with `r0 <= r(c) <= 4·r0`,
@@ -104,7 +105,7 @@ impl<const N: usize> Index<N> {
     }
 }
 
-/// What [`Varying::store`] did with a point.
+/// What [`VaryingPoints::store`] did with a point.
 enum Filed {
     Yes,
     /// Out of memory or indices: the run ends.
@@ -113,8 +114,8 @@ enum Filed {
 
 /// The stream of a [`PoissonDisk::iter_varying`] run.
 #[derive(Debug)]
-pub struct Varying<const N: usize, F> {
-    rng: DefaultRng,
+pub struct VaryingPoints<const N: usize, F, R = DefaultRng> {
+    rng: R,
     field: F,
     domain: Domain<N>,
     periods: [f64; N],
@@ -152,21 +153,16 @@ impl<const N: usize> PoissonDisk<N> {
     /// the field is larger at the candidate `c`. The same seed and
     /// field give the same points. The point cap and budget apply (the
     /// budget on the grids allocated up front and an estimate of the bytes
-    /// per point); [`Builder::layout`](crate::Builder::layout) does not.
+    /// per point); [`PoissonDiskBuilder::layout`](crate::PoissonDiskBuilder::layout) does not.
     ///
     /// The guarantee is symmetric, so it does not depend on which point
     /// came first. Speed: up to 4-D and `r_max / r_min <= 16`, each band
     /// of radii (a factor `2^(3/4)`) gets a dense grid of its own, cells of
     /// side `top/√N` for the band's top radius (together about half the
     /// cells of one grid at `r_min` in 2-D, a quarter in 3-D, 4 bytes
-    /// each), when they fit the memory budget; a whole `points
-    /// --radius-range` run with `r_max / r_min = 4` (a linear field) then
-    /// took 1.6× the CPU time of a fixed radius making the same number
-    /// of points in 2-D (10⁶ points) and 1.3–1.4× in 3-D (3·10⁵), at a
-    /// ratio of 2 1.6× and 1.4–1.6×, on a shared machine at loads of 2.5
-    /// to 4.2; README has the figures.
-    /// Otherwise a slower index of lists per cell of side `r_max` serves,
-    /// with the same points.
+    /// each), when they fit the memory budget. Otherwise a slower index of
+    /// lists per cell of side `r_max` serves, with the same points.
+    /// `docs/performance.md` compares its speed with a fixed radius's.
     ///
     /// # Errors
     /// [`Error::InvalidRadius`] if `r_min` is not a valid radius or is above
@@ -180,7 +176,7 @@ impl<const N: usize> PoissonDisk<N> {
     /// use bridson::{Domain, PoissonDisk2};
     /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.08)?;
     /// let field = |p: &[f64; 2]| 0.02 + 0.06 * p[0];
-    /// let points: Vec<[f64; 2]> = sampler.iter_varying(3, 0.02, field)?.collect();
+    /// let points: Vec<[f64; 2]> = sampler.iter_varying_seeded(3, 0.02, field)?.collect();
     /// for (i, p) in points.iter().enumerate() {
     ///     for q in &points[..i] {
     ///         let d2 = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
@@ -193,24 +189,39 @@ impl<const N: usize> PoissonDisk<N> {
     /// assert!(left > 2 * (points.len() - left));
     /// # Ok::<(), bridson::Error>(())
     /// ```
-    pub fn iter_varying<F: Fn(&[f64; N]) -> f64>(
+    pub fn iter_varying<R: Rng, F: Fn(&[f64; N]) -> f64>(
+        &self,
+        rng: R,
+        r_min: f64,
+        field: F,
+    ) -> Result<VaryingPoints<N, F, R>, Error> {
+        self.varying(rng, r_min, field, true)
+    }
+
+    /// As [`iter_varying`](Self::iter_varying), drawing from [`DefaultRng`]
+    /// seeded with `seed`: the same seed and field give the same points on
+    /// every run and platform.
+    ///
+    /// # Errors
+    /// As [`iter_varying`](Self::iter_varying).
+    pub fn iter_varying_seeded<F: Fn(&[f64; N]) -> f64>(
         &self,
         seed: u64,
         r_min: f64,
         field: F,
-    ) -> Result<Varying<N, F>, Error> {
-        self.varying(seed, r_min, field, true)
+    ) -> Result<VaryingPoints<N, F>, Error> {
+        self.iter_varying(seeded_rng(seed), r_min, field)
     }
 
     /// [`Self::iter_varying`], on the lists if `levels` is false (tests
     /// compare the two).
-    fn varying<F: Fn(&[f64; N]) -> f64>(
+    fn varying<R: Rng, F: Fn(&[f64; N]) -> f64>(
         &self,
-        seed: u64,
+        rng: R,
         r_min: f64,
         field: F,
         levels: bool,
-    ) -> Result<Varying<N, F>, Error> {
+    ) -> Result<VaryingPoints<N, F, R>, Error> {
         let r_max = self.radius();
         check_radius_and_attempts(r_min, self.attempts())?;
         if r_min > r_max {
@@ -241,8 +252,8 @@ impl<const N: usize> PoissonDisk<N> {
                 (Index::Lists(Lists::new(coarse)), needed)
             }
         };
-        Ok(Varying {
-            rng: seeded_rng(seed),
+        Ok(VaryingPoints {
+            rng,
             field,
             domain,
             periods: zip_map(&domain.extent(), &domain.periodic(), |l, p| {
@@ -266,8 +277,8 @@ impl<const N: usize> PoissonDisk<N> {
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
-    /// Why the stream ended early, if it did: as [`Iter::error`](crate::Iter::error).
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
+    /// Why the stream ended early, if it did: as [`Points::error`](crate::Points::error).
     pub fn error(&self) -> Option<Error> {
         self.error
     }
@@ -311,7 +322,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64> Varying<N, F> {
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
     /// Up to `k` candidates around active entry `i`, keeping the first
     /// that no stored point is too close to. The points that turn
     /// candidates away, the parent and its nearest neighbours of its band
@@ -440,7 +451,7 @@ enum Step<const N: usize> {
     Stop,
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> Iterator for VaryingPoints<N, F, R> {
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
@@ -507,7 +518,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64> Iterator for Varying<N, F> {
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64> FusedIterator for Varying<N, F> {}
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> FusedIterator for VaryingPoints<N, F, R> {}
 
 #[cfg(test)]
 mod tests {
@@ -522,7 +533,7 @@ mod tests {
         ratio: f64,
         seed: u64,
         levels: bool,
-    ) -> super::Varying<N, impl Fn(&[f64; N]) -> f64> {
+    ) -> super::VaryingPoints<N, impl Fn(&[f64; N]) -> f64> {
         let domain = Domain::from_extent([1.0; N])
             .unwrap()
             .with_periodic([periodic; N]);
@@ -540,7 +551,9 @@ mod tests {
             let t = p.iter().sum::<f64>() * 3.0;
             r_min + (r_max - r_min) * (t - t.floor())
         };
-        sampler.varying(seed, r_min, field, levels).unwrap()
+        sampler
+            .varying(crate::random::seeded_rng(seed), r_min, field, levels)
+            .unwrap()
     }
 
     /// The two indexes find the same conflicts, so they make the same
