@@ -4,8 +4,8 @@
 //! bank build at the same counts and at the maximum, 4096.
 //!
 //! ```text
-//! cargo bench --bench render                  # everything (a few minutes)
-//! cargo bench --bench render -- camera/16     # one count
+//! cargo bench --manifest-path benches/Cargo.toml --bench render               # all
+//! cargo bench --manifest-path benches/Cargo.toml --bench render -- camera/16  # one
 //! ```
 
 use bridson::{PixelSampler, PoissonPixelSampler, relative_radius};

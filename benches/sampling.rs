@@ -1,12 +1,12 @@
-//! Criterion benchmarks at the sizes named in README: the unit square with
+//! Criterion benchmarks at the sizes named in docs/performance.md: the unit square with
 //! ≈1M points, the unit cube with ≈1M points and the 4-D unit box with
 //! ≈200k points, `k = 30`, both candidate distributions, and in 2-D and 3-D
 //! the textbook baseline in the same run, so the ratio is measured side by
 //! side at the same `k` (and, for the annulus, the same ρ).
 //!
 //! ```text
-//! cargo bench --bench sampling            # everything (several minutes)
-//! cargo bench --bench sampling -- 2d      # one group
+//! cargo bench --manifest-path benches/Cargo.toml --bench sampling        # all (minutes)
+//! cargo bench --manifest-path benches/Cargo.toml --bench sampling -- 2d  # one group
 //! ```
 //!
 //! Peak memory is printed by `cargo run --release --example throughput`,
