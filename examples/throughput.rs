@@ -1,4 +1,4 @@
-//! Prints the figures behind README's performance table: points/s, ρ and
+//! Prints the figures behind docs/performance.md's throughput table: points/s, ρ and
 //! peak resident memory for the library and for a textbook Bridson, measured
 //! side by side in one run, with the speed ratio at equal `k`.
 //!

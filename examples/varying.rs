@@ -1,6 +1,6 @@
 //! Draws a set whose radius varies (`PoissonDisk::iter_varying`) as a PNG:
 //! black dots on white, all of one size (0.4·r_min), so that the density
-//! shows as darkness. The README's
+//! shows as darkness. docs/quality.md's
 //! pictures, from the repository root:
 //!
 //! ```text

@@ -11,7 +11,7 @@
 //!   points lazily, in generation order, or collects them all;
 //!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
 //!   and clear of pre-placed points, which also gives seamless chunks of
-//!   an endless world (`examples/endless_world.rs`), and
+//!   an endless world made chunk by chunk, and
 //!   [`PoissonDisk::iter_varying`] lets the radius vary with position;
 //!   [`PoissonDisk::generate_parallel`] makes a set on several threads,
 //!   slab by slab (a different set from one run's, with its statistics).

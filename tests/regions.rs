@@ -1,7 +1,7 @@
 //! Regions and pre-placed points (`PoissonDisk::iter_with`): every new
 //! point lies in the region, and the union of the pre-placed and the new
 //! points keeps the guarantee, checked by the naive oracle; bad pre-placed
-//! points are errors; and README's seamless-chunks recipe, run over a
+//! points are errors; and the seamless-chunks recipe, run over a
 //! 4 × 4 world, keeps the guarantee across chunk borders and leaves no gap
 //! along them.
 
@@ -185,8 +185,9 @@ fn bad_fixed_points_are_errors() {
 
 // ---------------------------------------------------------------- chunks
 
-/// README's recipe: chunk (i, j) is the unit square at (i, j), sampled in
-/// the square grown by 2r, its new points kept in the chunk, around the
+/// The seamless-chunks recipe (chunks made in order, each around its
+/// neighbours' points): chunk (i, j) is the unit square at (i, j), sampled
+/// in the square grown by 2r, its new points kept in the chunk, around the
 /// points of the neighbours already made.
 fn chunk(
     i: i32,

@@ -488,7 +488,7 @@ fn exact_mode_places_a_hemmed_pixel_again_rather_than_top_it_up() {
 /// Exactly `n` a pixel would draw the points toward the middles of the
 /// pixel's halves: at `n = 4` the second harmonic of the in-pixel density,
 /// `2·mean(cos 4πu)`, read about -0.028 along x and -0.022 along y with
-/// either method before the feedback took it (`docs/streaming-runs.md`).
+/// either method before the feedback took it (`docs/records/streaming.jsonl`).
 /// The harmonic measured over 131 072 points (256 × 128 pixels; its
 /// noise about ±0.004 an axis) now sits near 0 on both axes, where the
 /// sum of the two read about -0.05.

@@ -362,7 +362,7 @@ struct RasterReport {
 
 /// The JSON quality report of `points`, a set of `domain` with minimum
 /// distance `radius` drawn with `attempts` and `candidates` as `config`
-/// says (see the README for the fields). Takes the plain list, so a
+/// says (docs/quality.md describes the fields). Takes the plain list, so a
 /// streamed set is measured alike.
 fn quality_report<const N: usize>(
     config: &Config,

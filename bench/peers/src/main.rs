@@ -58,7 +58,7 @@ struct Args {
     /// Seed of every seeded run
     #[arg(long, default_value_t = 2026)]
     seed: u64,
-    /// Print the summary table (README's) of the JSON lines in these files
+    /// Print the summary table (docs/peers.md's) of the JSON lines in these files
     /// instead of running anything
     #[arg(long, value_delimiter = ',')]
     summarize: Vec<std::path::PathBuf>,

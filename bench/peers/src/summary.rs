@@ -1,4 +1,4 @@
-//! README's table: one row per case, one column per crate, from the JSON
+//! docs/peers.md's table: one row per case, one column per crate, from the JSON
 //! lines of one or more runs (the last line of a (case, crate) wins).
 
 use crate::peers::ALL;
