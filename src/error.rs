@@ -120,6 +120,33 @@ pub enum Error {
         /// The budget in force.
         budget: u64,
     },
+    /// Occurs at the start of a run over the whole box (no region) whose
+    /// expected size is clearly over the memory budget: even stored at the
+    /// bare 8 bytes a coordinate, the points the density model expects
+    /// need more than twice the budget. The run makes no point. Reported as
+    /// [`MemoryBudgetExceeded`](Self::MemoryBudgetExceeded) is, at once
+    /// instead of after minutes. Raise the budget, cap the number of points
+    /// or grow the radius.
+    RunTooLarge {
+        /// The points the run is expected to make (the density model's
+        /// mean, or the point cap if lower), saturated at `u64::MAX`.
+        expected_points: u64,
+        /// The bytes those points need at the least, saturated at
+        /// `u64::MAX`.
+        needed: u64,
+        /// The budget in force.
+        budget: u64,
+    },
+    /// Occurs when a run in a region
+    /// ([`PoissonDisk::iter_with`](crate::PoissonDisk::iter_with)) with no
+    /// pre-placed points finds no first point: none of its uniform tries
+    /// over the box landed in the region. The region is empty, or too small
+    /// a part of the box to hit: pre-place a point in it, or sample a
+    /// smaller box around it.
+    RegionMissed {
+        /// The tries made (`64·k`).
+        tries: u64,
+    },
     /// Occurs when a sampler with a point cap
     /// ([`PoissonDiskBuilder::max_points`](crate::PoissonDiskBuilder::max_points)) is asked for a
     /// parallel run ([`PoissonDisk::generate_parallel`](crate::PoissonDisk::generate_parallel)):
@@ -214,6 +241,33 @@ impl fmt::Display for Error {
                 f,
                 "the run stopped after {points} points: the next one would take its memory past \
                  the budget of {budget} bytes (the points made are valid, but not complete)"
+            ),
+            Self::RunTooLarge {
+                expected_points,
+                needed,
+                budget,
+            } => {
+                if expected_points == u64::MAX {
+                    f.write_str("the run is expected to make more than 1.8e19 points")?;
+                } else {
+                    write!(f, "the run is expected to make about {expected_points} points")?;
+                }
+                if needed == u64::MAX {
+                    f.write_str(", which need more than 1.8e19 bytes")?;
+                } else {
+                    write!(f, ", which need at least {needed} bytes")?;
+                }
+                write!(
+                    f,
+                    ", over the memory budget of {budget} bytes: raise the budget, cap the \
+                     points or use a larger radius"
+                )
+            }
+            Self::RegionMissed { tries } => write!(
+                f,
+                "no first point landed in the region in {tries} uniform tries over the box: \
+                 the region is empty or too small a part of the box (pre-place a point in it, \
+                 or sample a smaller box around it)"
             ),
             Self::PointCapInParallel => f.write_str(
                 "a parallel run takes no point cap (a cap keeps a prefix of one run's stream)",

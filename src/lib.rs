@@ -185,7 +185,7 @@
 //! | box thinner than `r` on some axis (bounded or periodic) | valid points: a row, or a single point |
 //! | `r` far larger than the box (a radius in the wrong units: `r = 200` in a unit box) | one point, at once, in a few kilobytes: the search reach stops at the box (periodic: at one period), and a box whose diameter is below `r` ends after its first point |
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
-//! | `r` tiny against the box (within 2⁴⁰ radii) | [`GridLayout::Auto`] takes the sparse grid, which allocates nothing up front; the run yields points until the next one would take it past the budget, then ends with [`Error::MemoryBudgetExceeded`] (from [`Points::error`] or [`PoissonDisk::generate`]). A point cap stops it sooner, with no error |
+//! | `r` small against the box (within 2⁴⁰ radii) | in 2-D and 3-D [`GridLayout::Auto`] takes the dense grid where the run's expected peak fits the budget: the bytes allocated up front plus the points the density model expects, with 5 % to spare, at their bytes a point (about 2.5 points' worth with `u32` cells, 0.5 in 3-D bricks); where the model has no answer (`k` outside `3 ..= 1000`) it assumes the box full at the packing bound. Otherwise (and from 4-D up) the sparse grid, which allocates nothing up front. A run over the whole box ([`PoissonDisk::iter`], [`PoissonDisk::generate`]) whose expected points need more than twice the budget even at 8 bytes a coordinate is refused at once with [`Error::RunTooLarge`] (`points --dim 3 --radius 1e-9` in milliseconds); a run that starts and then outgrows the budget ends with [`Error::MemoryBudgetExceeded`] (from [`Points::error`], or an [`Incomplete`] that keeps the points). A run in a region ([`PoissonDisk::iter_with`]) is never refused up front: a small region in a huge box runs. A point cap stops a run sooner, with no error |
 //! | [`PoissonDiskBuilder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Points::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
 //! | count mode asking for 0 points (`about_points(domain, 0)`); a negative cap or count does not compile (both are `u64`) | [`Error::InvalidPointCount`] |
 //! | count mode asking for more points than radii down to `1e-150` give | [`Error::InvalidRadius`] |
@@ -193,9 +193,10 @@
 //! | `k = 0` | [`Error::ZeroAttempts`] |
 //! | `k` above [`MAX_ATTEMPTS`] (65 536) | [`Error::TooManyAttempts`] |
 //! | large `k`, up to [`MAX_ATTEMPTS`] | accepted, and the stream ends, but late: every point retires only after `k` failed throws, so a run of `n` points costs up to about `(2n + 1)·k` throws, whatever the cap, since points start retiring once the first ones are surrounded. The stream is lazy: with annulus candidates the first points come at once; 2-D [`Candidates::Sphere`] spaces its `k` directions `2π/k` apart, so a parent blocked on one side can take about `k` throws from the third point on. Keep `k` in the hundreds |
-//! | point cap `Some(0)` | an empty stream |
-//! | point cap `Some(c)` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
-//! | point cap `Some(u64::MAX)` | the same as `None` |
+//! | point cap `0` | an empty stream |
+//! | point cap `c` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
+//! | point cap `u64::MAX` | no cap |
+//! | a region ([`PoissonDisk::iter_with`]) that none of `64·k` uniform tries over the box hits, with no pre-placed point | [`Error::RegionMissed`] from `iter_with`, before any point |
 //! | any point, any input | `lo <= x < hi`: a candidate that rounds onto `hi` is dropped, never clamped |
 //!
 //! # Determinism
@@ -288,6 +289,7 @@ mod density;
 mod domain;
 mod error;
 mod huge_pages;
+mod incomplete;
 mod prefetch;
 mod random;
 #[cfg(feature = "serde")]
@@ -299,6 +301,7 @@ pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
+pub use crate::incomplete::Incomplete;
 pub use crate::random::{DefaultRng, seeded_rng};
 pub use crate::render::{
     CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler,

@@ -13,6 +13,7 @@ use crate::density::expected_count;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::grid::GridLayout;
+use crate::incomplete::Incomplete;
 use crate::random::{DefaultRng, seeded_rng};
 use crate::sampler::PoissonDisk;
 use core::num::NonZeroUsize;
@@ -202,7 +203,9 @@ impl<const N: usize> PoissonDisk<N> {
     /// [`Error::MemoryBudgetExceeded`] from the first slab (along the axis)
     /// that outgrew its share, its `budget` being that share, and
     /// [`Error::GridTooLarge`] if not even the sparse layout fits a share
-    /// (a budget of a few bytes). No points are returned then.
+    /// (a budget of a few bytes), each as an [`Incomplete`] with no points
+    /// (a box of one slab keeps its points, as
+    /// [`generate`](Self::generate) does).
     ///
     /// # Example: a million-point scale set on all cores
     /// ```
@@ -221,7 +224,7 @@ impl<const N: usize> PoissonDisk<N> {
         &self,
         seed: u64,
         threads: NonZeroUsize,
-    ) -> Result<Vec<[f64; N]>, Error> {
+    ) -> Result<Vec<[f64; N]>, Incomplete<N>> {
         self.generate_parallel_in(seed, threads, |rooms| rooms)
     }
 
@@ -236,7 +239,7 @@ impl<const N: usize> PoissonDisk<N> {
         &self,
         mut rng: R,
         threads: NonZeroUsize,
-    ) -> Result<Vec<[f64; N]>, Error> {
+    ) -> Result<Vec<[f64; N]>, Incomplete<N>> {
         self.generate_parallel_seeded(rng.next_u64(), threads)
     }
 
@@ -248,9 +251,12 @@ impl<const N: usize> PoissonDisk<N> {
         seed: u64,
         threads: NonZeroUsize,
         rooms: impl FnOnce(Vec<usize>) -> Vec<usize>,
-    ) -> Result<Vec<[f64; N]>, Error> {
+    ) -> Result<Vec<[f64; N]>, Incomplete<N>> {
+        // A slab that failed leaves no points: the slabs' runs are not
+        // collected until every one has ended.
+        let none = |e: Error| Incomplete::new(Vec::new(), e);
         if self.max_points().is_some_and(|cap| cap != u64::MAX) {
-            return Err(Error::PointCapInParallel);
+            return Err(none(Error::PointCapInParallel));
         }
         let Some(slabs) = Slabs::plan(self.domain(), self.radius()) else {
             return self.generate_seeded(seed);
@@ -284,10 +290,12 @@ impl<const N: usize> PoissonDisk<N> {
         }
         let evens = run_all(even, threads, |(i, rng, portion)| {
             self.even_slab(&slabs, i, rng, share, portion)
-        })?;
+        })
+        .map_err(none)?;
         let odds = run_all(odd, threads, |(i, rng, portion)| {
             self.odd_slab(&slabs, i, rng, share, portion, &evens)
-        })?;
+        })
+        .map_err(none)?;
         let mut written = Vec::with_capacity(slabs.count());
         let mut spills = Vec::with_capacity(slabs.count());
         for (e, o) in evens.into_iter().zip(odds) {

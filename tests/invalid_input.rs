@@ -5,8 +5,8 @@
 mod common;
 
 use bridson::{
-    Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, GridLayout, MAX_ATTEMPTS, PoissonDisk,
-    PoissonDisk2, Tiled,
+    Candidates, DEFAULT_MAX_GRID_BYTES, Domain, Error, Everywhere, GridLayout, MAX_ATTEMPTS,
+    PoissonDisk, PoissonDisk2, Tiled,
 };
 
 fn unit_square() -> Domain<2> {
@@ -460,7 +460,12 @@ fn run_within_budget<const N: usize>(
     seed: u64,
 ) -> (usize, Option<Error>) {
     let budget = sampler.max_grid_bytes();
-    let mut it = sampler.iter_seeded(seed);
+    // In a region (the whole box): never refused up front, so the run
+    // grows until the budget (`a_plain_run_expected_far_over_is_refused`
+    // has the plain run).
+    let mut it = sampler
+        .iter_with_seeded(seed, Everywhere, &[])
+        .expect("no pre-placed points");
     let mut points = Vec::new();
     while let Some(p) = it.next() {
         points.push(p);
@@ -478,6 +483,40 @@ fn run_within_budget<const N: usize>(
         panic!("{report}");
     }
     (points.len(), it.error())
+}
+
+/// A plain run whose expected points need over twice the budget is
+/// refused at once, with no point and no grid walked; with a cap within the
+/// budget it runs.
+#[test]
+fn a_plain_run_expected_far_over_is_refused() {
+    let budget = 1 << 20;
+    let s = PoissonDisk2::builder(huge_box(), 1e-3)
+        .max_grid_bytes(budget)
+        .build()
+        .expect("the sparse grid starts empty");
+    let mut it = s.iter_seeded(1);
+    assert_eq!(it.next(), None, "no point");
+    match it.error() {
+        Some(Error::RunTooLarge {
+            expected_points,
+            needed,
+            budget: b,
+        }) => {
+            assert!(
+                expected_points > 1 << 50,
+                "{expected_points} points expected"
+            );
+            assert!(needed > 2 * b && b == budget, "{needed} bytes needed");
+        }
+        other => panic!("expected RunTooLarge, got {other:?}"),
+    }
+    let capped = s.to_builder().max_points(1000).build().expect("valid");
+    assert_eq!(
+        capped.generate_seeded(1).map(|p| p.len()),
+        Ok(1000),
+        "capped"
+    );
 }
 
 /// A tiny radius in a huge box: no layout is refused up front for the
@@ -502,14 +541,23 @@ fn tiny_radius_in_a_huge_box_stops_at_the_budget() {
         }),
         "the reason"
     );
+    // `generate` on a box it does not refuse (about 45 000 points, under
+    // twice the budget at 16 bytes each): the same stop, the points kept.
+    let moderate = PoissonDisk2::builder(unit_square(), 0.0037)
+        .max_grid_bytes(budget)
+        .build()
+        .expect("valid");
+    let (n, _) = run_within_budget(&moderate, 1);
+    let stopped = moderate.generate_seeded(1).expect_err("over budget");
     assert_eq!(
-        s.generate_seeded(1),
-        Err(Error::MemoryBudgetExceeded {
+        stopped.error(),
+        Error::MemoryBudgetExceeded {
             points: n as u64,
             budget
-        }),
+        },
         "generate reports it too"
     );
+    assert_eq!(stopped.points().len(), n, "and keeps the points made");
     assert_eq!(
         PoissonDisk2::builder(huge_box(), 1e-3)
             .layout(GridLayout::Dense)
@@ -764,12 +812,28 @@ fn display_messages_name_the_failed_condition() {
         .layout(GridLayout::Dense)
         .build()
         .expect_err("too large");
-    let stopped = PoissonDisk2::builder(huge_box(), 1e-3)
+    // A run expected to need less than twice the budget starts, and stops
+    // at the budget; one expected far over it is refused at once.
+    let stopped = PoissonDisk2::builder(unit_square(), 0.02)
         .max_grid_bytes(1 << 16)
         .build()
         .expect("sparse")
         .generate_seeded(1)
-        .expect_err("over budget");
+        .expect_err("over budget")
+        .error();
+    let refused = PoissonDisk2::builder(huge_box(), 1e-3)
+        .max_grid_bytes(1 << 16)
+        .build()
+        .expect("sparse")
+        .generate_seeded(1)
+        .expect_err("refused");
+    assert!(refused.points().is_empty(), "a refused run makes no point");
+    let Error::RunTooLarge {
+        expected_points, ..
+    } = refused.error()
+    else {
+        panic!("expected RunTooLarge, got {refused:?}");
+    };
     let Error::MemoryBudgetExceeded { points, .. } = stopped else {
         panic!("expected MemoryBudgetExceeded, got {stopped:?}");
     };
@@ -818,6 +882,14 @@ fn display_messages_name_the_failed_condition() {
                 format!("after {points} points"),
                 "budget of 65536 bytes".into(),
                 "valid".into(),
+            ],
+        ),
+        (
+            refused.error(),
+            vec![
+                format!("about {expected_points} points"),
+                "budget of 65536 bytes".into(),
+                "larger radius".into(),
             ],
         ),
         (

@@ -6,7 +6,7 @@
 //!
 //! The allocator and its per-thread counters are `tests/common/counting.rs`.
 
-use bridson::{Domain, Error, GridLayout, PoissonDisk};
+use bridson::{Domain, Error, Everywhere, GridLayout, PoissonDisk};
 
 #[path = "common/counting.rs"]
 mod counting;
@@ -26,12 +26,32 @@ fn run<const N: usize>(
         .layout(layout)
         .max_grid_bytes(budget)
         .build()?;
-    let mut it = sampler.iter_seeded(11);
+    // In a region (the whole box), so that no run is refused up front and
+    // every one grows until the budget; the plain run's refusal is checked
+    // by `the_peak_heap_stays_within_the_budget`.
+    let mut it = sampler.iter_with_seeded(11, Everywhere, &[])?;
     let n = it.by_ref().take(limit).count();
     let error = it.error();
     drop(it);
     let peak = counting::peak_since(before);
     Ok((n, error, peak as u64))
+}
+
+/// The plain run's outcome: its count and error, or its refusal.
+fn plain<const N: usize>(
+    domain: Domain<N>,
+    r: f64,
+    layout: GridLayout,
+    budget: u64,
+) -> (usize, Option<Error>) {
+    let sampler = PoissonDisk::builder(domain, r)
+        .layout(layout)
+        .max_grid_bytes(budget)
+        .build()
+        .expect("built before");
+    let mut it = sampler.iter_seeded(11);
+    let n = it.by_ref().count();
+    (n, it.error())
 }
 
 fn unit<const N: usize>(periodic: bool) -> Domain<N> {
@@ -65,6 +85,21 @@ fn the_peak_heap_stays_within_the_budget() {
                             *stops += 1;
                         }
                         Some(other) => panic!("{ctx}: {other:?}"),
+                    }
+                    // The plain run is the same run, or refused at once
+                    // where its expected points need over twice the budget
+                    // (then this run must not have completed).
+                    match plain(unit::<N>(periodic), r, layout, budget) {
+                        (
+                            0,
+                            Some(Error::RunTooLarge {
+                                needed, budget: b, ..
+                            }),
+                        ) => {
+                            assert!(needed > 2 * b, "{ctx}: refused at {needed} bytes");
+                            assert!(error.is_some(), "{ctx}: refused a run that fits");
+                        }
+                        same => assert_eq!(same, (n, error), "{ctx}: the plain run"),
                     }
                 }
             }

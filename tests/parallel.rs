@@ -156,7 +156,9 @@ fn a_point_cap_is_refused() {
         .build()
         .expect("valid");
     assert_eq!(
-        capped.generate_parallel_seeded(1, threads(2)),
+        capped
+            .generate_parallel_seeded(1, threads(2))
+            .map_err(|e| e.error()),
         Err(Error::PointCapInParallel),
         "a cap keeps a prefix of one stream"
     );

@@ -125,15 +125,30 @@ fn a_polygon_mask_with_no_fixed_points() {
         assert!(new.len() > 500, "seed {seed}: {} points", new.len());
         check_union(&domain, 0.03, &[], &new, triangle, &format!("seed {seed}"));
     }
+    // A region no try hits is an error, not an empty stream: an empty
+    // mask, and a disc of radius 1 in a 1000 x 1000 box.
     let nowhere = |_: &[f64; 2]| false;
     assert_eq!(
-        sampler
-            .iter_with_seeded(1, nowhere, &[])
-            .expect("valid")
-            .count(),
-        0,
+        sampler.iter_with_seeded(1, nowhere, &[]).err(),
+        Some(Error::RegionMissed { tries: 64 * 30 }),
         "an empty region"
     );
+    let wide =
+        PoissonDisk2::new(Domain::from_extent([1000.0, 1000.0]).expect("box"), 0.5).expect("valid");
+    let speck = |p: &[f64; 2]| (p[0] - 500.0).powi(2) + (p[1] - 500.0).powi(2) < 1.0;
+    assert!(
+        matches!(
+            wide.iter_with_seeded(1, speck, &[]).err(),
+            Some(Error::RegionMissed { .. })
+        ),
+        "a region too small to hit"
+    );
+    // Pre-placed in it, the same region grows.
+    let grown = wide
+        .iter_with_seeded(1, speck, &[[500.0, 500.0]])
+        .expect("valid")
+        .count();
+    assert!(grown > 0, "grown from a pre-placed point");
     // The plain run is the `Everywhere` region.
     let everywhere: Vec<[f64; 2]> = sampler
         .iter_with_seeded(9, bridson::Everywhere, &[])

@@ -160,7 +160,7 @@ fn write_points<const N: usize, W: Write>(
                 let count = write_stream(out, format, header, points.into_iter())?;
                 Ok((count, start.elapsed(), layout, None))
             }
-            Err(e) => Ok((0, start.elapsed(), layout, Some(e))),
+            Err(e) => Ok((0, start.elapsed(), layout, Some(e.error()))),
         };
     }
     let mut points = sampler.iter_seeded(seed);

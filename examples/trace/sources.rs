@@ -301,7 +301,10 @@ impl PixelFiller {
                         .with_periodic([true; 5]),
                     self.recipe.joint_radius,
                 )
-                .and_then(|disk| disk.generate_seeded(pixel_seed))
+                .and_then(|disk| {
+                    disk.generate_seeded(pixel_seed)
+                        .map_err(bridson::Error::from)
+                })
                 .unwrap_or_default();
                 out.extend(points.iter().map(|p| Sample {
                     camera: CameraSample {
@@ -358,14 +361,20 @@ fn paper_rest(spp: u32, seed: u64, out: &mut Vec<Sample>) {
     let set2 = |salt: u64| {
         Domain::from_extent([1.0, 1.0])
             .and_then(|d| PoissonDisk::new(d, r2))
-            .and_then(|disk| disk.generate_seeded(hash(&[seed, salt])))
+            .and_then(|disk| {
+                disk.generate_seeded(hash(&[seed, salt]))
+                    .map_err(bridson::Error::from)
+            })
             .unwrap_or_default()
     };
     let lens = set2(1);
     let light = set2(2);
     let time = Domain::from_extent([1.0])
         .and_then(|d| PoissonDisk::new(d, paper_radius_1d(spp)))
-        .and_then(|disk| disk.generate_seeded(hash(&[seed, 3])))
+        .and_then(|disk| {
+            disk.generate_seeded(hash(&[seed, 3]))
+                .map_err(bridson::Error::from)
+        })
         .unwrap_or_default();
     let count = out.len().min(lens.len()).min(light.len()).min(time.len());
     out.truncate(count);

@@ -814,7 +814,7 @@ mod tests {
     use crate::vector::{distance_squared, periodic_distance_squared};
 
     fn bricks(domain: &Domain<3>, r: f64) -> Bricks<3> {
-        match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
+        match plan(domain, r, GridLayout::Dense, 1 << 30, None, None) {
             Ok(GridPlan::Dense(p)) => {
                 assert!(p.bricked, "3-D plans bricks");
                 Bricks::try_new(&p, domain, r).expect("allocates")

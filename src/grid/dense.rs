@@ -733,7 +733,7 @@ mod tests {
     use super::*;
 
     fn dense<const N: usize>(domain: &Domain<N>, r: f64) -> Dense<N> {
-        match plan(domain, r, GridLayout::Dense, 1 << 30, None) {
+        match plan(domain, r, GridLayout::Dense, 1 << 30, None, None) {
             Ok(GridPlan::Dense(p)) => Dense::try_new(&p, domain, r).expect("allocates"),
             other => panic!("no dense plan: {other:?}"),
         }

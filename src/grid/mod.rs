@@ -85,9 +85,66 @@ pub(crate) struct DensePlan<const N: usize> {
     pub(crate) bytes: u64,
     /// [`bytes`](Self::bytes) plus the points the box could hold at most
     /// (the packing bound, or the cap), doubled for the growth of the point
-    /// vector and the active list: what [`GridLayout::Auto`] compares with
-    /// the budget to choose the dense layout. Never a reason to refuse.
+    /// vector and the active list: the worst case, which [`peak`](Self::peak)
+    /// falls back on where the density model has no answer.
     pub(crate) bytes_when_full: u64,
+    /// The point cap, if any.
+    pub(crate) max_points: Option<u64>,
+    /// The images a point has in the padding on average: the padded
+    /// cells over the box's own on the periodic axes, less one. Bricks
+    /// store a point again for each image; `u32` cells only an index.
+    pub(crate) images_per_point: f64,
+}
+
+/// The planned count over the density model's mean: the model's mean is
+/// within 2 % of the count in 2-D and 3-D, a single run scatters about 1 %
+/// around it at 1 000 points (less above), so 5 % covers both with room.
+pub(crate) const EXPECTED_MARGIN: f64 = 1.05;
+
+/// Bytes a point adds to a dense run's peak, in points' worth (`8·N`
+/// bytes), beyond what the grid allocates up front, besides the point
+/// vector (see [`DensePlan::peak`]): the active list, and in 3-D the bricks'
+/// spill. The active list's capacity reaches about 0.2 points' worth on
+/// a million 3-D points and 0.35 on a few thousand (a larger share of them
+/// near the faces); the planning tests in `sampler.rs` hold the plan above
+/// the peaks runs reach.
+const ACTIVE_PER_POINT: f64 = 0.5;
+
+impl<const N: usize> DensePlan<N> {
+    /// The peak heap a run on this plan is expected to reach, the figure
+    /// [`GridLayout::Auto`] holds against the budget: the bytes allocated up
+    /// front plus the expected points (the density model's mean with
+    /// [`EXPECTED_MARGIN`], or the cap if lower) at their bytes per point.
+    /// With `u32` cells the point vector counts two points' worth a point:
+    /// the budget counts its old and new block together while it grows, and
+    /// lets it grow by less than double near the limit, so twice the final
+    /// length always suffices; the bricks hold their points in the bytes
+    /// allocated up front. On top, [`ACTIVE_PER_POINT`].
+    /// Where the model has no answer (`expected` is `None`) the worst case,
+    /// [`bytes_when_full`](Self::bytes_when_full).
+    pub(crate) fn peak(&self, expected: Option<f64>) -> u64 {
+        let Some(mean) = expected.filter(|n| n.is_finite() && *n >= 0.0) else {
+            return self.bytes_when_full;
+        };
+        let mut points = (mean * EXPECTED_MARGIN).ceil() + 1.0;
+        if let Some(cap) = self.max_points {
+            points = points.min(to_f64(cap) + 1.0);
+        }
+        let per_point = if self.bricked {
+            self.images_per_point
+        } else {
+            2.0
+        } + ACTIVE_PER_POINT;
+        #[expect(clippy::cast_precision_loss, reason = "N is small")]
+        let bytes = points * per_point * (8 * N) as f64;
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "finite and positive; saturates at u64::MAX"
+        )]
+        let extra = bytes.ceil().min(u64::MAX as f64) as u64;
+        self.bytes.saturating_add(extra).min(self.bytes_when_full)
+    }
 }
 
 /// Geometry of a sparse grid.
@@ -258,7 +315,25 @@ fn plan_dense<const N: usize>(
         bricked,
         bytes,
         bytes_when_full: bytes.saturating_add(when_full),
+        max_points,
+        images_per_point: images_per_point(&counts, &padded_cells, domain),
     })
+}
+
+/// The padded cells over the box's own on the periodic axes, less one:
+/// how many images a point has in the padding on average.
+fn images_per_point<const N: usize>(
+    counts: &[u64; N],
+    padded: &[u64; N],
+    domain: &Domain<N>,
+) -> f64 {
+    let mut ratio = 1.0;
+    for ((&m, &p), periodic) in counts.iter().zip(padded).zip(domain.periodic()) {
+        if periodic {
+            ratio *= to_f64(p) / to_f64(m);
+        }
+    }
+    ratio - 1.0
 }
 
 /// Cells on each side that can hold a point closer than `radius` to a
@@ -352,12 +427,16 @@ fn plan_sparse<const N: usize>(
 }
 
 /// Chooses and sizes the grid, or explains why none fits.
+///
+/// `expected` is the density model's expected point count, where it has
+/// one (see [`DensePlan::peak`]).
 pub(crate) fn plan<const N: usize>(
     domain: &Domain<N>,
     radius: f64,
     layout: GridLayout,
     budget: u64,
     max_points: Option<u64>,
+    expected: Option<f64>,
 ) -> Result<GridPlan<N>, Error> {
     for (axis, extent) in domain.extent().into_iter().enumerate() {
         let cells = extent / radius;
@@ -373,7 +452,7 @@ pub(crate) fn plan<const N: usize>(
     let dense_when = |full: bool| {
         if bricks::applies(N)
             && let Ok(d) = plan_dense(domain, radius, max_points, true)
-            && bricks_fit(&d, if full { d.bytes_when_full } else { d.bytes })
+            && bricks_fit(&d, if full { d.peak(expected) } else { d.bytes })
         {
             return Ok(d);
         }
@@ -396,15 +475,15 @@ pub(crate) fn plan<const N: usize>(
             Err(needed) => Err(too_large(needed)),
         },
         GridLayout::Auto => {
-            // Dense where it fits even full, sparse otherwise: the sparse
-            // grid's memory grows with the points only.
+            // Dense where the run is expected to fit, sparse otherwise: the
+            // sparse grid's memory grows with the points only.
             let dense = if N <= 3 {
                 dense_when(true)
             } else {
                 Err(u64::MAX)
             };
             if let Ok(d) = dense
-                && d.bytes_when_full <= budget
+                && d.peak(expected) <= budget
             {
                 return Ok(GridPlan::Dense(d));
             }
@@ -495,20 +574,35 @@ mod tests {
     #[test]
     fn huge_grids_are_errors_not_aborts() {
         let d = Domain::from_extent([1e300, 1e300]).unwrap();
-        let e = plan(&d, 1e-100, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
+        let e = plan(
+            &d,
+            1e-100,
+            GridLayout::Auto,
+            DEFAULT_MAX_GRID_BYTES,
+            None,
+            None,
+        );
         assert_eq!(
             e,
             Err(Error::BoxTooWide { axis: 0 }),
             "too wide for any grid"
         );
         let d = Domain::from_extent([1.0, 1e6]).unwrap();
-        let e = plan(&d, 1e-7, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, Some(10));
+        let e = plan(
+            &d,
+            1e-7,
+            GridLayout::Auto,
+            DEFAULT_MAX_GRID_BYTES,
+            Some(10),
+            None,
+        );
         assert_eq!(e, Err(Error::BoxTooWide { axis: 1 }), "a cap cannot help");
         let e = plan(
             &Domain::from_extent([1.0; 3]).unwrap(),
             1e-6,
             GridLayout::Dense,
             1 << 30,
+            None,
             None,
         );
         assert!(matches!(e, Err(Error::GridTooLarge { .. })), "{e:?}");
@@ -521,7 +615,7 @@ mod tests {
     fn auto_is_dense_up_to_3d_and_sparse_from_4d() {
         fn auto<const N: usize>(r: f64, layout: GridLayout) -> Option<bool> {
             let d = Domain::from_extent([1.0; N]).ok()?;
-            let p = plan(&d, r, layout, DEFAULT_MAX_GRID_BYTES, None).ok()?;
+            let p = plan(&d, r, layout, DEFAULT_MAX_GRID_BYTES, None, None).ok()?;
             Some(matches!(p, GridPlan::Dense(_)))
         }
         assert_eq!(auto::<2>(0.01, GridLayout::Auto), Some(true), "2-D");
@@ -534,17 +628,31 @@ mod tests {
     #[test]
     fn a_huge_box_plans_a_sparse_grid_that_allocates_nothing_up_front() {
         let d = Domain::from_extent([1e6, 1e6]).unwrap();
-        let p = plan(&d, 1e-3, GridLayout::Auto, DEFAULT_MAX_GRID_BYTES, None);
+        let p = plan(
+            &d,
+            1e-3,
+            GridLayout::Auto,
+            DEFAULT_MAX_GRID_BYTES,
+            None,
+            None,
+        );
         assert!(
             matches!(p, Ok(GridPlan::Sparse(s)) if s.bytes < 1024),
             "{p:?}"
         );
-        let dense = plan(&d, 1e-3, GridLayout::Dense, DEFAULT_MAX_GRID_BYTES, None);
+        let dense = plan(
+            &d,
+            1e-3,
+            GridLayout::Dense,
+            DEFAULT_MAX_GRID_BYTES,
+            None,
+            None,
+        );
         assert!(
             matches!(dense, Err(Error::GridTooLarge { .. })),
             "{dense:?}"
         );
-        let none = plan(&d, 1e-3, GridLayout::Auto, 16, None);
+        let none = plan(&d, 1e-3, GridLayout::Auto, 16, None, None);
         assert!(matches!(none, Err(Error::GridTooLarge { .. })), "{none:?}");
     }
 

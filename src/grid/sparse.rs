@@ -843,7 +843,7 @@ mod tests {
     use super::*;
 
     fn sparse<const N: usize>(domain: &Domain<N>, r: f64) -> Sparse<N> {
-        match plan(domain, r, GridLayout::Sparse, 1 << 30, None) {
+        match plan(domain, r, GridLayout::Sparse, 1 << 30, None, None) {
             Ok(GridPlan::Sparse(p)) => Sparse::new(&p, domain, r),
             other => panic!("no sparse plan: {other:?}"),
         }
@@ -888,7 +888,8 @@ mod tests {
             let d = Domain::new([-0.3; N], [extent - 0.3; N])
                 .unwrap()
                 .with_periodic(periodic);
-            let Ok(GridPlan::Sparse(p)) = plan(&d, r, GridLayout::Sparse, 1 << 30, None) else {
+            let Ok(GridPlan::Sparse(p)) = plan(&d, r, GridLayout::Sparse, 1 << 30, None, None)
+            else {
                 panic!("no sparse plan");
             };
             let mut grids = [
