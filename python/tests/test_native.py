@@ -135,6 +135,10 @@ def test_varying_radius_array_and_callable():
             assert np.all(d2 >= need)
 
 
+@pytest.mark.skipif(
+    not hasattr(b.PoissonDisk, "generate_parallel"),
+    reason="built without the bindings crate's `parallel` feature",
+)
 def test_generate_parallel():
     s = b.PoissonDisk([0, 0], [2, 1], 0.02)
     points = s.generate_parallel(seed=5, threads=2)

@@ -92,7 +92,10 @@ class PoissonDisk:
         it. ``ValueError`` if the run outgrew the memory budget."""
     def generate_parallel(self, seed: Seed, threads: int) -> FloatArray:
         """All points for ``seed``, made slab by slab on ``threads`` threads
-        (a different set from ``generate``'s, with its statistics)."""
+        (a different set from ``generate``'s, with its statistics). Only in
+        a build with the bindings crate's ``parallel`` feature (``pip
+        install ./python --config-settings=maturin.build-args="--features
+        parallel"``); without it the method is absent."""
     def iter(self, seed: Seed) -> "Points":
         """The lazy stream of points for ``seed``, in generation order."""
     def iter_with(
