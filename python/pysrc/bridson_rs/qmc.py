@@ -14,7 +14,8 @@ What differs, on purpose:
 - No two points are ever closer than ``radius``, in every dimension.
   SciPy checks only the grid cells within two cells (of side
   ``radius / sqrt(d)``) of a candidate, so from 5-D up it accepts pairs
-  closer than ``radius``.
+  closer than ``radius``; and it compares with its grid's points rounded
+  to float32, so it accepts pairs a hair closer in any dimension.
 - Every point lies in ``l_bounds < x < u_bounds``.
 - ``d`` is 0 (empty samples) or 1 to 8; a larger ``d`` is a ``ValueError``.
 - A ``radius`` the sampler cannot use (not finite, ``<= 0``, outside
