@@ -1,0 +1,45 @@
+"""Poisson disk sampling in any dimension, exact and fast: Python bindings
+of the Rust crate ``bridson``.
+
+Native API (NumPy in, NumPy out, no SciPy needed):
+
+- :class:`PoissonDisk` -- points at least ``radius`` apart in a box of 1 to 8
+  dimensions, each axis bounded or periodic; :meth:`PoissonDisk.about_points`
+  asks for about ``n`` points instead. ``generate(seed)`` returns an
+  ``(n, d)`` float64 array; ``iter``, ``iter_with`` (a region mask and
+  pre-placed points) and ``iter_varying`` (a radius that varies with
+  position) return lazy :class:`Points` streams.
+- :class:`Tiled` -- a 2-D set streamed over a raster pixel by pixel
+  (:class:`Pixels`).
+- :class:`PoissonPixelSampler` and :class:`CameraPixels` -- camera samples
+  for a renderer.
+
+The drop-in for ``scipy.stats.qmc.PoissonDisk`` is
+:class:`bridson_rs.qmc.PoissonDisk` (it needs SciPy).
+"""
+
+from ._native import (
+    DEFAULT_ATTEMPTS,
+    MAX_ATTEMPTS,
+    MAX_DIM,
+    MAX_SAMPLES_PER_PIXEL,
+    CameraPixels,
+    Pixels,
+    Points,
+    PoissonDisk,
+    PoissonPixelSampler,
+    Tiled,
+)
+
+__all__ = [
+    "DEFAULT_ATTEMPTS",
+    "MAX_ATTEMPTS",
+    "MAX_DIM",
+    "MAX_SAMPLES_PER_PIXEL",
+    "CameraPixels",
+    "Pixels",
+    "Points",
+    "PoissonDisk",
+    "PoissonPixelSampler",
+    "Tiled",
+]
