@@ -276,6 +276,7 @@ mod tiled;
 mod candidates;
 mod conflict_cache;
 mod count;
+mod field;
 mod parallel;
 mod sampler;
 mod varying;
@@ -299,6 +300,7 @@ pub use crate::count::{PointCap, PointCount};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
+pub use crate::field::{DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, Query, field_order};
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
 pub use crate::render::{

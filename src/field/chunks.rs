@@ -1,0 +1,5 @@
+//! Chunked queries (placeholder).
+
+/// A box cut into chunks.
+#[derive(Clone, Debug)]
+pub struct Chunks;
