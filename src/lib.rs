@@ -300,7 +300,7 @@ pub use crate::count::{PointCap, PointCount};
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
-pub use crate::field::{DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, Query, field_order};
+pub use crate::field::{DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, Query, chunk_boxes, field_order};
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
 pub use crate::render::{

@@ -11,7 +11,7 @@ use crate::domain::Domain;
 use crate::error::Error;
 use lattice::{Axis, Lattice};
 
-pub use chunks::Chunks;
+pub use chunks::chunk_boxes;
 
 /// Smallest and largest radius accepted, as for every sampler of the crate.
 const MIN_RADIUS: f64 = 1e-150;

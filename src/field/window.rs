@@ -46,6 +46,7 @@ struct Dart<const N: usize> {
     x: [f64; N],
     /// Priority, then the key as tie-break: the larger wins.
     prio: (u64, u64),
+    rel: [u32; N],
     cell: u32,
     next: u32,
     status: u8,
@@ -147,7 +148,6 @@ fn window_axes<const N: usize>(
 struct Window<'l, const N: usize> {
     lat: &'l Lattice<N>,
     r2: f64,
-    seed: u64,
     axes: [WinAxis; N],
     stride: [usize; N],
     /// Offsets to every level-0 cell that can hold a point within `r` of a
@@ -288,29 +288,6 @@ impl<const N: usize> Window<'_, N> {
         }
         s <= self.r2 * (1.0 - 1e-12)
     }
-
-    /// Whether the live cell is covered by a known point, and whether an
-    /// unknown could reach it.
-    fn cell_state(&self, rel: &[u32; N], lo: &[f64; N], hi: &[f64; N]) -> (bool, bool) {
-        let mut covered = false;
-        let mut unknown = false;
-        self.each_slot(rel, |slot| {
-            match slot {
-                Slot::Cell(at) => {
-                    let p = self.point_of[at];
-                    if p != NONE && self.covers(&self.points[p as usize], lo, hi) {
-                        covered = true;
-                        return false;
-                    }
-                    unknown |= self.taint[at];
-                }
-                Slot::Outer => unknown = true,
-                Slot::Empty => {}
-            }
-            true
-        });
-        (covered, unknown)
-    }
 }
 
 /// Runs the rounds on the window of the query cells `[qa, qb)` grown by
@@ -385,7 +362,6 @@ pub(crate) fn run<const N: usize>(
     let mut w = Window {
         lat,
         r2,
-        seed,
         axes,
         stride,
         stencil,
@@ -475,6 +451,7 @@ pub(crate) fn run<const N: usize>(
             darts.push(Dart {
                 x,
                 prio: (word(key, 0), key),
+                rel: cell.rel,
                 cell: cell_lin,
                 next: w.dart_head[at],
                 status: if unknown { UNKNOWN } else { CANDIDATE },
@@ -484,7 +461,7 @@ pub(crate) fn run<const N: usize>(
         // Each dart against its rivals of the round within r.
         outcome.clear();
         for (i, dart) in darts.iter().enumerate() {
-            let rel = w.rel_of(dart.cell as usize);
+            let rel = dart.rel;
             let mut lost = false;
             let mut doubt = dart.status == UNKNOWN;
             w.each_slot(&rel, |s| {
@@ -528,7 +505,7 @@ pub(crate) fn run<const N: usize>(
                 }
                 UNKNOWN => {
                     w.taint[at] = true;
-                    if w.in_query(&w.rel_of(at)) {
+                    if w.in_query(&dart.rel) {
                         return Run {
                             points: None,
                             rounds: round + 1,
@@ -544,8 +521,40 @@ pub(crate) fn run<const N: usize>(
         let next_level = if split { level + 1 } else { level };
         let mut next = Vec::with_capacity(if split { live.len() } else { 0 });
         let mut query_live = false;
+        let mut near: Vec<u32> = Vec::new();
         for cell in &live {
             let c = w.canonical(&cell.rel);
+            // The points and unknowns around the level-0 cell, once for all
+            // of its children.
+            near.clear();
+            let mut unknown = cell.unknown;
+            // Every child has the cell's centre as a corner (and an unsplit
+            // cell contains it), so only points within `r` of the centre
+            // can cover one.
+            let (clo, chi) = w.sub_box(&c, &cell.sub, level);
+            let centre: [f64; N] = core::array::from_fn(|a| 0.5 * (clo[a] + chi[a]));
+            w.each_slot(&cell.rel, |slot| {
+                match slot {
+                    Slot::Cell(at) => {
+                        let p = w.point_of[at];
+                        if p != NONE && lat.dist2(&w.points[p as usize], &centre) <= r2 {
+                            near.push(p);
+                        }
+                        unknown |= w.taint[at];
+                    }
+                    Slot::Outer => unknown = true,
+                    Slot::Empty => {}
+                }
+                true
+            });
+            // An unknown cell whose level-0 cell is already tainted adds
+            // nothing: its darts could only taint that cell again, and every
+            // dart within `r` of them already sees the taint.
+            let lin = w.lin(&cell.rel);
+            let in_query = w.in_query(&cell.rel);
+            if unknown && w.taint[lin] && !in_query {
+                continue;
+            }
             let children: u32 = if split { 1 << N } else { 1 };
             for k in 0..children {
                 let sub: [u32; N] = if split {
@@ -557,12 +566,13 @@ pub(crate) fn run<const N: usize>(
                 if (0..N).any(|axis| lo[axis] >= hi[axis]) {
                     continue;
                 }
-                let (covered, unknown) = w.cell_state(&cell.rel, &lo, &hi);
-                if covered {
+                if near
+                    .iter()
+                    .any(|&p| w.covers(&w.points[p as usize], &lo, &hi))
+                {
                     continue;
                 }
-                let unknown = unknown || cell.unknown;
-                if w.in_query(&cell.rel) {
+                if in_query {
                     if unknown {
                         return Run {
                             points: None,
@@ -570,12 +580,6 @@ pub(crate) fn run<const N: usize>(
                         };
                     }
                     query_live = true;
-                }
-                // An unknown cell whose level-0 cell is already tainted adds
-                // nothing: its darts could only taint that cell again, and
-                // every dart within `r` of them already sees the taint.
-                if unknown && w.taint[w.lin(&cell.rel)] {
-                    continue;
                 }
                 next.push(Live {
                     rel: cell.rel,
