@@ -199,15 +199,25 @@ fn chunk_side_and_threads_never_change_the_points() {
         assert_eq!(one, other, "chunk {chunk}, threads {threads}");
     }
     // The naive oracle on the union across chunk borders.
-    assert!(min_distance_ok(&one, 1.0, [0.0; 2]), "min distance across borders");
+    assert!(
+        min_distance_ok(&one, 1.0, [0.0; 2]),
+        "min distance across borders"
+    );
 }
 
 #[test]
 fn visiting_order_never_changes_a_chunk() {
     let field = Field::<2>::unbounded(3.0, 1).unwrap();
     let boxes = bridson::chunk_boxes([0.0, 0.0], [256.0, 256.0], 64.0).unwrap();
-    let forward: Vec<_> = boxes.iter().map(|(a, b)| field.points_in(*a, *b).unwrap()).collect();
-    let backward: Vec<_> = boxes.iter().rev().map(|(a, b)| field.points_in(*a, *b).unwrap()).collect();
+    let forward: Vec<_> = boxes
+        .iter()
+        .map(|(a, b)| field.points_in(*a, *b).unwrap())
+        .collect();
+    let backward: Vec<_> = boxes
+        .iter()
+        .rev()
+        .map(|(a, b)| field.points_in(*a, *b).unwrap())
+        .collect();
     let backward: Vec<_> = backward.into_iter().rev().collect();
     assert_eq!(forward, backward, "every chunk the same in either order");
 }

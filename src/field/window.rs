@@ -375,10 +375,16 @@ pub(crate) fn run<const N: usize>(
 
     // Round 0: every level-0 cell of the window is live.
     let mut live: Vec<Live<N>> = Vec::with_capacity(total);
+    // Whether anything lies beyond the window: if not (a whole box), no
+    // unknown can arise, and the scans for them are skipped.
+    let cut = w.axes.iter().any(|a| a.cut_lo || a.cut_hi);
     for lin in 0..total {
         let rel = w.rel_of(lin);
         let mut unknown = false;
         w.each_slot(&rel, |s| {
+            if !cut {
+                return false;
+            }
             if matches!(s, Slot::Outer) {
                 unknown = true;
                 return false;
@@ -403,13 +409,6 @@ pub(crate) fn run<const N: usize>(
     let mut round = 0u32;
     loop {
         // Throw one dart in every live cell.
-        if std::env::var_os("FIELD_TRACE").is_some() {
-            eprintln!(
-                "round {round} level {level} live {} points {}",
-                live.len(),
-                w.points.len()
-            );
-        }
         darts.clear();
         let scale = 1.0 / f64::from(1u32 << level);
         for cell in &live {
@@ -425,7 +424,11 @@ pub(crate) fn run<const N: usize>(
             }
             let mut rejected = false;
             let mut unknown = cell.unknown;
+            let nothing_near = w.points.is_empty() && !cut;
             w.each_slot(&cell.rel, |s| {
+                if nothing_near {
+                    return false;
+                }
                 match s {
                     Slot::Cell(at) => {
                         let p = w.point_of[at];
