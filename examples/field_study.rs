@@ -58,8 +58,8 @@ fn bands<const N: usize>(chunk: f64) {
         lo[0] = f64::from(c % k) * chunk;
         lo[1] = f64::from(c / k) * chunk;
         let mut hi = lo.map(|v| v + chunk);
-        for a in 2..N {
-            hi[a] = chunk;
+        for h in hi.iter_mut().skip(2) {
+            *h = chunk;
         }
         for p in field.points_in(lo, hi).unwrap() {
             let d = (0..2)

@@ -439,8 +439,31 @@ mod tests {
             format: Format::Csv,
             out: Some(PathBuf::from("pts.csv")),
             raster: None,
+            field: None,
         };
         assert_eq!(c, expected, "example command");
+    }
+
+    #[test]
+    fn parses_the_field_flags() {
+        let c =
+            config("--dim 2 --radius 0.05 --extent 1 --field --region 0.2,0:0.7,0.5 --chunk 0.1");
+        assert_eq!(c.extent, Some(vec![1.0, 1.0]), "one extent for every axis");
+        assert_eq!(
+            c.field,
+            Some(FieldMode {
+                region: Some((vec![0.2, 0.0], vec![0.7, 0.5])),
+                chunk: Some(0.1),
+            }),
+            "field mode"
+        );
+        for bad in [
+            "--dim 2 --radius 0.05 --field --region 0.2,0",
+            "--dim 2 --radius 0.05 --field --region 0.2:0.7",
+            "--dim 2 --radius 0.05 --region 0,0:1,1",
+        ] {
+            let _ = error(bad);
+        }
     }
 
     #[test]

@@ -5,6 +5,11 @@
 //! every chunk side and thread count, and the threads share nothing but the
 //! field's parameters.
 
+#![expect(
+    clippy::indexing_slicing,
+    reason = "indices are axes `< N` of `[_; N]` arrays"
+)]
+
 use super::{Field, field_order};
 use crate::error::Error;
 
@@ -21,6 +26,10 @@ const MAX_CHUNKS: u64 = 1 << 32;
 /// [`Error::InvalidRadius`] if `side` is not finite and positive (the chunk
 /// side is a length, as the radius is); [`Error::BoxTooWide`] if the box
 /// would make more than 2³² chunks.
+#[expect(
+    clippy::type_complexity,
+    reason = "a box is its two corners, as everywhere in the crate"
+)]
 pub fn chunk_boxes<const N: usize>(
     lo: [f64; N],
     hi: [f64; N],
@@ -42,7 +51,7 @@ pub fn chunk_boxes<const N: usize>(
     for axis in 0..N {
         let c = ((hi[axis] - lo[axis]) / side).ceil();
         #[expect(clippy::cast_precision_loss, reason = "a power of two")]
-        if !(c < MAX_CHUNKS as f64) {
+        if c.is_nan() || c >= MAX_CHUNKS as f64 {
             return Err(Error::BoxTooWide { axis });
         }
         #[expect(

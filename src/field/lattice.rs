@@ -2,6 +2,11 @@
 //! kind (bounded, periodic or unbounded), and the windows of cells a query
 //! works in.
 
+#![expect(
+    clippy::indexing_slicing,
+    reason = "indices are axes `< N` of `[_; N]` arrays"
+)]
+
 use crate::domain::Domain;
 use crate::error::Error;
 
@@ -62,7 +67,7 @@ impl<const N: usize> Lattice<N> {
             let (l, u) = (lo[axis], hi[axis]);
             let cells = ((u - l) / h).ceil();
             #[expect(clippy::cast_precision_loss, reason = "a power of two")]
-            if !(cells < MAX_CELLS as f64) {
+            if cells.is_nan() || cells >= MAX_CELLS as f64 {
                 return Err(Error::BoxTooWide { axis });
             }
             #[expect(clippy::cast_possible_truncation, reason = "a whole number under 2^41")]

@@ -62,6 +62,11 @@
 //! outside the mask dropped, a cell outside it dead; both are functions of
 //! place), but are not implemented.
 
+#![expect(
+    clippy::indexing_slicing,
+    reason = "indices are axes `< N` of `[_; N]` arrays"
+)]
+
 mod chunks;
 mod hash;
 mod lattice;

@@ -8,6 +8,11 @@
 //! are settled (no live cell left) before any unknown reaches them;
 //! otherwise the caller retries with a wider window.
 
+#![expect(
+    clippy::indexing_slicing,
+    reason = "indices are axes `< N` of `[_; N]` arrays; cell indices come from the window's own geometry (`lin` of a `rel` inside it, or a stencil offset from an interior cell), dart and point indices from their own vectors"
+)]
+
 use super::hash::{dart_key, unit, word};
 use super::lattice::{Axis, Lattice};
 
@@ -175,6 +180,7 @@ impl<const N: usize> Window<'_, N> {
             .all(|(&r, ax)| ax.in_query.get(r as usize).copied().unwrap_or(false))
     }
 
+    #[expect(clippy::needless_range_loop, reason = "three arrays by axis")]
     fn rel_of(&self, lin: usize) -> [u32; N] {
         let mut rel = [0; N];
         for axis in 0..N {
@@ -214,8 +220,9 @@ impl<const N: usize> Window<'_, N> {
                     return Slot::Empty;
                 }
             }
-            #[expect(clippy::cast_sign_loss, reason = "0 <= r < len")]
-            let r = r as usize;
+            let Ok(r) = usize::try_from(r) else {
+                return Slot::Empty;
+            };
             lin += r * self.stride[axis];
         }
         if outer { Slot::Outer } else { Slot::Cell(lin) }
@@ -322,6 +329,7 @@ pub(crate) fn run<const N: usize>(
     loop {
         let mut near = 0.0;
         let mut centre = 0.0;
+        #[expect(clippy::needless_range_loop, reason = "offsets and sides by axis")]
         for axis in 0..N {
             #[expect(clippy::cast_precision_loss, reason = "small offsets")]
             let g = (d[axis].abs() - 1).max(0) as f64 * lat.side[axis];
