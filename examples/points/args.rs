@@ -616,7 +616,7 @@ mod tests {
             ),
             (
                 "--dim 2 --radius 1 --format xml",
-                "[possible values: csv, json, none]",
+                "[possible values: csv, json, none, binary]",
             ),
             (
                 "--dim 2 --radius 1 --candidates disk",
