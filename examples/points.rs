@@ -20,6 +20,8 @@ mod args;
 mod camera;
 #[path = "common/mod.rs"]
 mod common;
+#[path = "points/field.rs"]
+mod field;
 #[path = "points/output.rs"]
 mod output;
 

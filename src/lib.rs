@@ -24,6 +24,13 @@
 //!   default [`Scheme::Sweep`] runs one Bridson process across the image, so
 //!   pixel borders leave no trace in the set; [`Scheme::Paper`] is Ye's
 //!   per-pixel scheme, kept for comparison.
+//! - [`Field`] is a maximal Poisson disk set that is a pure function of
+//!   place: any box asked of it (a chunk of an endless world, a tile, a
+//!   slab on another thread or machine) returns exactly the whole set's
+//!   points there, whatever the order, chunk size or thread count, bit for
+//!   bit; bounded, periodic or unbounded (`docs/field.md`).
+//!   [`PoissonDisk::generate_parallel`] stays beside it for the serial
+//!   sampler's statistics (Bridson at `k`, not maximal) on several threads.
 //! - For a renderer's camera samples, [`PixelSampler`] is a sampler trait
 //!   in the shape of pbrt-v4's (`start_pixel_sample`, `get_1d`, `get_2d`,
 //!   `camera_sample`). [`PoissonPixelSampler`] implements it with exactly
@@ -298,6 +305,7 @@ mod tiled;
 // parallel form (slabs).
 mod candidates;
 mod conflict_cache;
+mod field;
 mod parallel;
 mod sampler;
 mod varying;
@@ -321,6 +329,7 @@ pub use crate::candidates::Candidates;
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
+pub use crate::field::{DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, Query, chunk_boxes, field_order};
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::incomplete::Incomplete;
 pub use crate::random::{DefaultRng, seeded_rng};

@@ -106,6 +106,23 @@ pub(crate) struct Args {
     /// statistics), the same for every T; written once complete
     #[arg(long, value_name = "T", conflicts_with_all = ["pixels", "radius_range"])]
     threads: Option<NonZeroUsize>,
+    /// The field sampler (bridson::Field): a maximal set that is a pure
+    /// function of place, written chunk by chunk in the canonical order
+    /// (last axis slowest); --threads and --chunk never change the output
+    #[arg(long, conflicts_with_all = ["pixels", "count", "radius_range", "max_points", "attempts"])]
+    field: bool,
+    /// With --field: write only the points in the half-open sub-box
+    /// [A, B), two comma lists (e.g. 0.2,0:0.7,0.5)
+    #[arg(
+        long,
+        value_name = "A:B",
+        requires = "field",
+        allow_hyphen_values = true
+    )]
+    region: Option<String>,
+    /// With --field: the chunk side in the box's units [default: 64 R]
+    #[arg(long, value_name = "S", requires = "field")]
+    chunk: Option<f64>,
     /// What to write (see "Output formats" below)
     #[arg(long, value_name = "FMT", value_enum, default_value_t = Format::Csv)]
     format: Format,
@@ -152,8 +169,11 @@ pub(crate) enum Format {
     Csv,
     /// One object with the header values and the points
     Json,
-    /// Nothing: the summary time is pure generation
+    /// Nothing: the summary time is pure generation (with --field, the
+    /// count and an order-independent digest on stdout)
     None,
+    /// Raw little-endian f64, D values a point, no header
+    Binary,
 }
 
 /// A fully parsed command line. List lengths and axis numbers are already
@@ -184,6 +204,17 @@ pub(crate) struct Config {
     pub(crate) out: Option<PathBuf>,
     /// `--pixels`: stream a raster instead of sampling the box.
     pub(crate) raster: Option<Raster>,
+    /// `--field`: the field sampler.
+    pub(crate) field: Option<FieldMode>,
+}
+
+/// The field mode's settings (`--field`).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct FieldMode {
+    /// `--region A:B`: only the points in `[A, B)`.
+    pub(crate) region: Option<(Vec<f64>, Vec<f64>)>,
+    /// `--chunk S`: the chunk side.
+    pub(crate) chunk: Option<f64>,
 }
 
 /// The raster mode's settings (`--pixels`).
@@ -240,7 +271,7 @@ impl Args {
                     }
                     None => None,
                 };
-                if camera.is_some() && self.format == Format::Json {
+                if camera.is_some() && matches!(self.format, Format::Json | Format::Binary) {
                     return Err(invalid("--camera writes CSV (or none)".to_owned()));
                 }
                 if camera.is_none()
@@ -272,7 +303,45 @@ impl Args {
         if !(1..=8).contains(&dim) {
             return Err(invalid(format!("--dim must be from 1 to 8, got {dim}")));
         }
-        for (flag, list) in [("--extent", &self.extent), ("--lo", &self.lo)] {
+        let (mut extent, mut lo) = (self.extent, self.lo);
+        if self.field {
+            // --field takes one value for every axis, as in `--extent 1`.
+            for list in [&mut extent, &mut lo].into_iter().flatten() {
+                if list.len() == 1 {
+                    *list = vec![list[0]; dim];
+                }
+            }
+        }
+        let field = if self.field {
+            let region = match self.region.as_deref() {
+                None => None,
+                Some(text) => {
+                    let parse = |part: &str| -> Result<Vec<f64>, clap::Error> {
+                        let values = common::list::<f64>(part)
+                            .map_err(|e| invalid(format!("--region: {e}")))?;
+                        if values.len() == dim {
+                            Ok(values)
+                        } else {
+                            Err(invalid(format!(
+                                "--region needs {dim} values on each side of ':', got {}",
+                                values.len()
+                            )))
+                        }
+                    };
+                    let Some((a, b)) = text.split_once(':') else {
+                        return Err(invalid("--region is A:B, two comma lists".to_owned()));
+                    };
+                    Some((parse(a)?, parse(b)?))
+                }
+            };
+            Some(FieldMode {
+                region,
+                chunk: self.chunk,
+            })
+        } else {
+            None
+        };
+        for (flag, list) in [("--extent", &extent), ("--lo", &lo)] {
             if let Some(values) = list
                 && values.len() != dim
             {
@@ -307,8 +376,8 @@ impl Args {
             radius: self.radius.unwrap_or(f64::NAN),
             count: self.count,
             radius_range,
-            extent: self.extent,
-            lo: self.lo,
+            extent,
+            lo,
             periodic,
             attempts: self.attempts,
             candidates: self.candidates.into(),
@@ -319,6 +388,7 @@ impl Args {
             format: self.format,
             out: self.out,
             raster,
+            field,
         })
     }
 }
@@ -369,8 +439,31 @@ mod tests {
             format: Format::Csv,
             out: Some(PathBuf::from("pts.csv")),
             raster: None,
+            field: None,
         };
         assert_eq!(c, expected, "example command");
+    }
+
+    #[test]
+    fn parses_the_field_flags() {
+        let c =
+            config("--dim 2 --radius 0.05 --extent 1 --field --region 0.2,0:0.7,0.5 --chunk 0.1");
+        assert_eq!(c.extent, Some(vec![1.0, 1.0]), "one extent for every axis");
+        assert_eq!(
+            c.field,
+            Some(FieldMode {
+                region: Some((vec![0.2, 0.0], vec![0.7, 0.5])),
+                chunk: Some(0.1),
+            }),
+            "field mode"
+        );
+        for bad in [
+            "--dim 2 --radius 0.05 --field --region 0.2,0",
+            "--dim 2 --radius 0.05 --field --region 0.2:0.7",
+            "--dim 2 --radius 0.05 --region 0,0:1,1",
+        ] {
+            let _ = error(bad);
+        }
     }
 
     #[test]
@@ -523,7 +616,7 @@ mod tests {
             ),
             (
                 "--dim 2 --radius 1 --format xml",
-                "[possible values: csv, json, none]",
+                "[possible values: csv, json, none, binary]",
             ),
             (
                 "--dim 2 --radius 1 --candidates disk",

@@ -11,6 +11,17 @@ use std::num::NonZeroUsize;
 use std::time::{Duration, Instant};
 
 pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
+    if let Some(mode) = &config.field {
+        return crate::common::by_dimension!(
+            config.dim,
+            run_field_dim((config, mode)),
+            1,
+            2,
+            3,
+            4,
+            5
+        );
+    }
     if let Some(raster) = config.raster {
         return run_raster(config, raster);
     }
@@ -19,6 +30,12 @@ pub(crate) fn dispatch(config: &Config) -> Result<(), Failure> {
 
 /// Builds the sampler from `config`, streams its points out and prints the
 /// summary.
+fn run_field_dim<const N: usize>(
+    (config, mode): (&Config, &crate::args::FieldMode),
+) -> Result<(), Failure> {
+    crate::field::run::<N>(config, mode)
+}
+
 fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
     if let Some(range) = config.radius_range {
         return run_varying::<N>(config, range);
@@ -198,6 +215,14 @@ fn write_stream<const N: usize, W: Write>(
                 count += 1;
             }
         }
+        Format::Binary => {
+            for p in points {
+                for x in p {
+                    out.write_all(&x.to_le_bytes())?;
+                }
+                count += 1;
+            }
+        }
         Format::Json => {
             write!(out, "{{\"dim\":{N},\"radius\":{radius},\"lo\":[")?;
             write_values(&mut out, &lo)?;
@@ -280,7 +305,7 @@ fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
 
 /// Comma-separated values with `{}` (shortest round-trip form, never an
 /// exponent; every value here is finite, so also valid JSON).
-fn write_values<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
+pub(crate) fn write_values<W: Write + ?Sized>(out: &mut W, values: &[f64]) -> io::Result<()> {
     for (i, x) in values.iter().enumerate() {
         if i > 0 {
             out.write_all(b",")?;

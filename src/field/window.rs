@@ -1,0 +1,619 @@
+//! The rounds of one query: every cell of a window of level-0 cells, dart
+//! by dart, with what lies outside the window tracked as unknown.
+//!
+//! Three-valued bookkeeping makes a window's answer exact or absent, never
+//! approximate: a point is *known* only when every input of its decision
+//! is known, and everything a decision could learn from outside the window
+//! is *unknown* ("tainted"). A query succeeds when the cells it asks about
+//! are settled (no live cell left) before any unknown reaches them;
+//! otherwise the caller retries with a wider window.
+
+#![expect(
+    clippy::indexing_slicing,
+    reason = "indices are axes `< N` of `[_; N]` arrays; cell indices come from the window's own geometry (`lin` of a `rel` inside it, or a stencil offset from an interior cell), dart and point indices from their own vectors"
+)]
+
+use super::hash::{dart_key, unit, word};
+use super::lattice::{Axis, Lattice};
+
+/// No point, no dart: the empty slot of a grid.
+const NONE: u32 = u32::MAX;
+
+/// A dart's state in its round.
+const REJECTED: u8 = 0;
+/// Clear of every known point; its cell certainly live.
+const CANDIDATE: u8 = 1;
+/// Might be a candidate: an input of its decision is unknown.
+const UNKNOWN: u8 = 2;
+/// Kept: a candidate that beats every rival within `r`.
+const ACCEPTED: u8 = 3;
+
+/// Rounds thrown at level 0 before cells start to split.
+pub(crate) const LEVEL0_ROUNDS: u32 = 2;
+/// The deepest level: cells `2^-MAX_LEVEL` of a level-0 cell on a side.
+pub(crate) const MAX_LEVEL: u32 = 30;
+/// The last round. The process is settled long before in practice (see the
+/// module docs of `field`); the cap keeps a run finite on any input.
+pub(crate) const MAX_ROUNDS: u32 = LEVEL0_ROUNDS + MAX_LEVEL + 8;
+
+/// A live cell: its level-0 cell (window-relative), its sub-cell at the
+/// round's level, and whether it is only possibly live.
+#[derive(Clone, Copy, Debug)]
+struct Live<const N: usize> {
+    rel: [u32; N],
+    sub: [u32; N],
+    unknown: bool,
+}
+
+/// One dart of a round.
+#[derive(Clone, Copy, Debug)]
+struct Dart<const N: usize> {
+    x: [f64; N],
+    /// Priority, then the key as tie-break: the larger wins.
+    prio: (u64, u64),
+    rel: [u32; N],
+    cell: u32,
+    next: u32,
+    status: u8,
+}
+
+/// Where a stencil offset from a cell lands.
+enum Slot {
+    /// A window cell, by linear index.
+    Cell(usize),
+    /// Outside the window, inside the domain: unknown.
+    Outer,
+    /// Outside the domain: nothing.
+    Empty,
+}
+
+/// One axis of the window: level-0 cells `a .. a + len` (absolute,
+/// unwrapped), whether the window wraps (a whole period), whether each side
+/// is cut (unknown beyond) and which cells the query asks about.
+struct WinAxis {
+    a: i64,
+    len: usize,
+    wrap: bool,
+    cut_lo: bool,
+    cut_hi: bool,
+    in_query: Vec<bool>,
+}
+
+/// What a window run returns.
+pub(crate) struct Run<const N: usize> {
+    /// The points of the query's cells, in no particular order, or `None`
+    /// if unknowns reached them (retry wider).
+    pub(crate) points: Option<Vec<[f64; N]>>,
+    /// The rounds run.
+    pub(crate) rounds: u32,
+}
+
+/// The query's cells `[qa, qb)` grown by `margin` cells on each side and
+/// fitted to the lattice. `None` if the window would be empty.
+fn window_axes<const N: usize>(
+    lat: &Lattice<N>,
+    qa: &[i64; N],
+    qb: &[i64; N],
+    margin: i64,
+) -> Option<[WinAxis; N]> {
+    let mut out: [Option<WinAxis>; N] = core::array::from_fn(|_| None);
+    for axis in 0..N {
+        let (mut a, mut b) = (qa[axis] - margin, qb[axis] + margin);
+        let (mut wrap, mut cut_lo, mut cut_hi) = (false, true, true);
+        match lat.axes[axis] {
+            Axis::Bounded { n, .. } => {
+                cut_lo = a > 0;
+                cut_hi = b < n;
+                a = a.max(0);
+                b = b.min(n);
+            }
+            Axis::Periodic { n, .. } => {
+                if b - a >= n {
+                    (a, b) = (0, n);
+                    (wrap, cut_lo, cut_hi) = (true, false, false);
+                }
+            }
+            Axis::Unbounded => {}
+        }
+        if b <= a {
+            return None;
+        }
+        let len = usize::try_from(b - a).ok()?;
+        let in_query = (0..len)
+            .map(|r| {
+                #[expect(clippy::cast_possible_wrap, reason = "len < 2^42")]
+                let i = a + r as i64;
+                match lat.axes[axis] {
+                    Axis::Periodic { n, .. } if wrap => {
+                        // Any image of the cell in the query's range.
+                        (qb[axis] - qa[axis] >= n)
+                            || (qa[axis]..qb[axis]).any(|q| q.rem_euclid(n) == i)
+                    }
+                    _ => qa[axis] <= i && i < qb[axis],
+                }
+            })
+            .collect();
+        out[axis] = Some(WinAxis {
+            a,
+            len,
+            wrap,
+            cut_lo,
+            cut_hi,
+            in_query,
+        });
+    }
+    let mut result = Vec::with_capacity(N);
+    for o in out {
+        result.push(o?);
+    }
+    result.try_into().ok()
+}
+
+/// The engine of one window.
+struct Window<'l, const N: usize> {
+    lat: &'l Lattice<N>,
+    r2: f64,
+    axes: [WinAxis; N],
+    stride: [usize; N],
+    /// Offsets to every level-0 cell that can hold a point within `r` of a
+    /// point of the centre cell, nearest first, with their linear offsets.
+    stencil: Vec<([i64; N], isize)>,
+    reach: [i64; N],
+    point_of: Vec<u32>,
+    taint: Vec<bool>,
+    dart_head: Vec<u32>,
+    points: Vec<[f64; N]>,
+    point_cell: Vec<u32>,
+}
+
+impl<const N: usize> Window<'_, N> {
+    fn lin(&self, rel: &[u32; N]) -> usize {
+        rel.iter()
+            .zip(&self.stride)
+            .map(|(&r, &s)| r as usize * s)
+            .sum()
+    }
+
+    fn in_query(&self, rel: &[u32; N]) -> bool {
+        rel.iter()
+            .zip(&self.axes)
+            .all(|(&r, ax)| ax.in_query.get(r as usize).copied().unwrap_or(false))
+    }
+
+    #[expect(clippy::needless_range_loop, reason = "three arrays by axis")]
+    fn rel_of(&self, lin: usize) -> [u32; N] {
+        let mut rel = [0; N];
+        for axis in 0..N {
+            #[expect(clippy::cast_possible_truncation, reason = "window sides fit u32")]
+            let r = ((lin / self.stride[axis]) % self.axes[axis].len) as u32;
+            rel[axis] = r;
+        }
+        rel
+    }
+
+    /// Whether every stencil offset from `rel` stays in the window.
+    fn interior(&self, rel: &[u32; N]) -> bool {
+        (0..N).all(|axis| {
+            let r = i64::from(rel[axis]);
+            #[expect(clippy::cast_possible_wrap, reason = "len < 2^42")]
+            let len = self.axes[axis].len as i64;
+            r >= self.reach[axis] && r + self.reach[axis] < len
+        })
+    }
+
+    /// Where offset `d` from cell `rel` lands (the slow path, near edges).
+    fn slot(&self, rel: &[u32; N], d: &[i64; N]) -> Slot {
+        let mut lin = 0;
+        let mut outer = false;
+        for axis in 0..N {
+            let ax = &self.axes[axis];
+            #[expect(clippy::cast_possible_wrap, reason = "len < 2^42")]
+            let len = ax.len as i64;
+            let mut r = i64::from(rel[axis]) + d[axis];
+            if r < 0 || r >= len {
+                if ax.wrap {
+                    r = r.rem_euclid(len);
+                } else if (r < 0 && ax.cut_lo) || (r >= len && ax.cut_hi) {
+                    outer = true;
+                    continue;
+                } else {
+                    return Slot::Empty;
+                }
+            }
+            let Ok(r) = usize::try_from(r) else {
+                return Slot::Empty;
+            };
+            lin += r * self.stride[axis];
+        }
+        if outer { Slot::Outer } else { Slot::Cell(lin) }
+    }
+
+    /// Calls `f` on every stencil slot around `rel`, nearest first, until
+    /// it returns `false`.
+    #[inline(always)]
+    fn each_slot(&self, rel: &[u32; N], mut f: impl FnMut(Slot) -> bool) {
+        if self.interior(rel) {
+            let base = self.lin(rel);
+            for &(_, off) in &self.stencil {
+                #[expect(clippy::cast_sign_loss, reason = "interior: in range")]
+                let at = base.wrapping_add(off as usize);
+                if !f(Slot::Cell(at)) {
+                    return;
+                }
+            }
+        } else {
+            for (d, _) in &self.stencil {
+                if !f(self.slot(rel, d)) {
+                    return;
+                }
+            }
+        }
+    }
+
+    /// The absolute, canonical level-0 index of window cell `rel`.
+    fn canonical(&self, rel: &[u32; N]) -> [i64; N] {
+        core::array::from_fn(|axis| {
+            self.lat
+                .canonical(axis, self.axes[axis].a + i64::from(rel[axis]))
+        })
+    }
+
+    /// The box of sub-cell `sub` at `level` of canonical cell `c`, clipped
+    /// to the domain on bounded axes.
+    fn sub_box(&self, c: &[i64; N], sub: &[u32; N], level: u32) -> ([f64; N], [f64; N]) {
+        let scale = 1.0 / f64::from(1u32 << level);
+        let mut lo = [0.0; N];
+        let mut hi = [0.0; N];
+        for axis in 0..N {
+            let s = f64::from(sub[axis]);
+            lo[axis] = self.lat.coord(axis, c[axis], s * scale);
+            hi[axis] = self.lat.coord(axis, c[axis], (s + 1.0) * scale);
+            if let Axis::Bounded { hi: top, .. } = self.lat.axes[axis] {
+                hi[axis] = hi[axis].min(top);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Whether point `p` covers the box `[lo, hi]` (every corner within
+    /// `r`, with a margin far above rounding).
+    fn covers(&self, p: &[f64; N], lo: &[f64; N], hi: &[f64; N]) -> bool {
+        let mut s = 0.0;
+        for axis in 0..N {
+            let mut q = p[axis];
+            if let Axis::Periodic { lo: l, hi: h, .. } = self.lat.axes[axis] {
+                let period = h - l;
+                let centre = 0.5 * (lo[axis] + hi[axis]);
+                if q - centre > 0.5 * period {
+                    q -= period;
+                } else if centre - q > 0.5 * period {
+                    q += period;
+                }
+            }
+            let far = (q - lo[axis]).abs().max((hi[axis] - q).abs());
+            s += far * far;
+        }
+        s <= self.r2 * (1.0 - 1e-12)
+    }
+}
+
+/// Runs the rounds on the window of the query cells `[qa, qb)` grown by
+/// `margin` level-0 cells, and returns the points of the query's cells if
+/// they are settled before anything unknown reaches them.
+pub(crate) fn run<const N: usize>(
+    lat: &Lattice<N>,
+    radius: f64,
+    seed: u64,
+    qa: &[i64; N],
+    qb: &[i64; N],
+    margin: i64,
+) -> Run<N> {
+    let Some(axes) = window_axes(lat, qa, qb, margin) else {
+        return Run {
+            points: Some(Vec::new()),
+            rounds: 0,
+        };
+    };
+    let mut stride = [0usize; N];
+    let mut total = 1usize;
+    for axis in 0..N {
+        stride[axis] = total;
+        total = total.saturating_mul(axes[axis].len);
+    }
+    let r2 = radius * radius;
+    // The stencil: offsets whose cells' nearest points are within r.
+    #[expect(clippy::cast_possible_truncation, reason = "r/h is about sqrt(N)")]
+    let reach: [i64; N] = core::array::from_fn(|axis| (radius / lat.side[axis]).floor() as i64 + 1);
+    let mut stencil = Vec::new();
+    let mut d = reach.map(|k| -k);
+    loop {
+        let mut near = 0.0;
+        let mut centre = 0.0;
+        #[expect(clippy::needless_range_loop, reason = "offsets and sides by axis")]
+        for axis in 0..N {
+            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+            let g = (d[axis].abs() - 1).max(0) as f64 * lat.side[axis];
+            near += g * g;
+            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+            let c = d[axis] as f64 * lat.side[axis];
+            centre += c * c;
+        }
+        if near < r2 * (1.0 + 1e-9) {
+            let mut off = 0isize;
+            for axis in 0..N {
+                #[expect(clippy::cast_possible_truncation, reason = "small offsets")]
+                let dd = d[axis] as isize;
+                #[expect(clippy::cast_possible_wrap, reason = "window sizes fit isize")]
+                let st = stride[axis] as isize;
+                off += dd * st;
+            }
+            stencil.push((centre, d, off));
+        }
+        let mut axis = 0;
+        loop {
+            if axis == N {
+                break;
+            }
+            d[axis] += 1;
+            if d[axis] <= reach[axis] {
+                break;
+            }
+            d[axis] = -reach[axis];
+            axis += 1;
+        }
+        if axis == N {
+            break;
+        }
+    }
+    stencil.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let stencil = stencil.into_iter().map(|(_, d, o)| (d, o)).collect();
+    let mut w = Window {
+        lat,
+        r2,
+        axes,
+        stride,
+        stencil,
+        reach,
+        point_of: vec![NONE; total],
+        taint: vec![false; total],
+        dart_head: vec![NONE; total],
+        points: Vec::new(),
+        point_cell: Vec::new(),
+    };
+
+    // Round 0: every level-0 cell of the window is live.
+    let mut live: Vec<Live<N>> = Vec::with_capacity(total);
+    // Whether anything lies beyond the window: if not (a whole box), no
+    // unknown can arise, and the scans for them are skipped.
+    let cut = w.axes.iter().any(|a| a.cut_lo || a.cut_hi);
+    for lin in 0..total {
+        let rel = w.rel_of(lin);
+        let mut unknown = false;
+        w.each_slot(&rel, |s| {
+            if !cut {
+                return false;
+            }
+            if matches!(s, Slot::Outer) {
+                unknown = true;
+                return false;
+            }
+            true
+        });
+        if unknown && w.in_query(&rel) {
+            return Run {
+                points: None,
+                rounds: 0,
+            };
+        }
+        live.push(Live {
+            rel,
+            sub: [0; N],
+            unknown,
+        });
+    }
+    let mut darts: Vec<Dart<N>> = Vec::new();
+    let mut outcome: Vec<u8> = Vec::new();
+    let mut level = 0u32;
+    let mut round = 0u32;
+    loop {
+        // Throw one dart in every live cell.
+        darts.clear();
+        let scale = 1.0 / f64::from(1u32 << level);
+        for cell in &live {
+            let c = w.canonical(&cell.rel);
+            let key = dart_key(seed, &c, &cell.sub, level, round);
+            let mut x = [0.0; N];
+            for axis in 0..N {
+                let t = (f64::from(cell.sub[axis]) + unit(word(key, 1 + axis as u64))) * scale;
+                x[axis] = lat.coord(axis, c[axis], t);
+            }
+            if !lat.inside(&x) {
+                continue;
+            }
+            let mut rejected = false;
+            let mut unknown = cell.unknown;
+            let nothing_near = w.points.is_empty() && !cut;
+            w.each_slot(&cell.rel, |s| {
+                if nothing_near {
+                    return false;
+                }
+                match s {
+                    Slot::Cell(at) => {
+                        let p = w.point_of[at];
+                        if p != NONE && lat.dist2(&x, &w.points[p as usize]) < r2 {
+                            rejected = true;
+                            return false;
+                        }
+                        unknown |= w.taint[at];
+                    }
+                    Slot::Outer => unknown = true,
+                    Slot::Empty => {}
+                }
+                true
+            });
+            if rejected {
+                continue;
+            }
+            let at = w.lin(&cell.rel);
+            #[expect(clippy::cast_possible_truncation, reason = "darts < cells < 2^32")]
+            let index = darts.len() as u32;
+            #[expect(clippy::cast_possible_truncation, reason = "window cells < 2^32")]
+            let cell_lin = at as u32;
+            darts.push(Dart {
+                x,
+                prio: (word(key, 0), key),
+                rel: cell.rel,
+                cell: cell_lin,
+                next: w.dart_head[at],
+                status: if unknown { UNKNOWN } else { CANDIDATE },
+            });
+            w.dart_head[at] = index;
+        }
+        // Each dart against its rivals of the round within r.
+        outcome.clear();
+        for (i, dart) in darts.iter().enumerate() {
+            let rel = dart.rel;
+            let mut lost = false;
+            let mut doubt = dart.status == UNKNOWN;
+            w.each_slot(&rel, |s| {
+                if let Slot::Cell(at) = s {
+                    let mut j = w.dart_head[at];
+                    while j != NONE {
+                        let rival = &darts[j as usize];
+                        if j as usize != i
+                            && rival.prio >= dart.prio
+                            && lat.dist2(&rival.x, &dart.x) < r2
+                        {
+                            if rival.status == CANDIDATE {
+                                lost = true;
+                                return false;
+                            }
+                            doubt = true;
+                        }
+                        j = rival.next;
+                    }
+                }
+                true
+            });
+            outcome.push(if lost {
+                REJECTED
+            } else if doubt {
+                UNKNOWN
+            } else {
+                ACCEPTED
+            });
+        }
+        for (dart, &out) in darts.iter().zip(&outcome) {
+            let at = dart.cell as usize;
+            w.dart_head[at] = NONE;
+            match out {
+                ACCEPTED => {
+                    #[expect(clippy::cast_possible_truncation, reason = "points < cells < 2^32")]
+                    let index = w.points.len() as u32;
+                    w.point_of[at] = index;
+                    w.points.push(dart.x);
+                    w.point_cell.push(dart.cell);
+                }
+                UNKNOWN => {
+                    w.taint[at] = true;
+                    if w.in_query(&dart.rel) {
+                        return Run {
+                            points: None,
+                            rounds: round + 1,
+                        };
+                    }
+                }
+                _ => {}
+            }
+        }
+        round += 1;
+        // The next round's live cells: the same level, or split.
+        let split = round >= LEVEL0_ROUNDS && level < MAX_LEVEL;
+        let next_level = if split { level + 1 } else { level };
+        let mut next = Vec::with_capacity(if split { live.len() } else { 0 });
+        let mut query_live = false;
+        let mut near: Vec<u32> = Vec::new();
+        for cell in &live {
+            let c = w.canonical(&cell.rel);
+            // The points and unknowns around the level-0 cell, once for all
+            // of its children.
+            near.clear();
+            let mut unknown = cell.unknown;
+            // Every child has the cell's centre as a corner (and an unsplit
+            // cell contains it), so only points within `r` of the centre
+            // can cover one.
+            let (clo, chi) = w.sub_box(&c, &cell.sub, level);
+            let centre: [f64; N] = core::array::from_fn(|a| 0.5 * (clo[a] + chi[a]));
+            w.each_slot(&cell.rel, |slot| {
+                match slot {
+                    Slot::Cell(at) => {
+                        let p = w.point_of[at];
+                        if p != NONE && lat.dist2(&w.points[p as usize], &centre) <= r2 {
+                            near.push(p);
+                        }
+                        unknown |= w.taint[at];
+                    }
+                    Slot::Outer => unknown = true,
+                    Slot::Empty => {}
+                }
+                true
+            });
+            // An unknown cell whose level-0 cell is already tainted adds
+            // nothing: its darts could only taint that cell again, and every
+            // dart within `r` of them already sees the taint.
+            let lin = w.lin(&cell.rel);
+            let in_query = w.in_query(&cell.rel);
+            if unknown && w.taint[lin] && !in_query {
+                continue;
+            }
+            let children: u32 = if split { 1 << N } else { 1 };
+            for k in 0..children {
+                let sub: [u32; N] = if split {
+                    core::array::from_fn(|axis| 2 * cell.sub[axis] + ((k >> axis) & 1))
+                } else {
+                    cell.sub
+                };
+                let (lo, hi) = w.sub_box(&c, &sub, next_level);
+                if (0..N).any(|axis| lo[axis] >= hi[axis]) {
+                    continue;
+                }
+                if near
+                    .iter()
+                    .any(|&p| w.covers(&w.points[p as usize], &lo, &hi))
+                {
+                    continue;
+                }
+                if in_query {
+                    if unknown {
+                        return Run {
+                            points: None,
+                            rounds: round,
+                        };
+                    }
+                    query_live = true;
+                }
+                next.push(Live {
+                    rel: cell.rel,
+                    sub,
+                    unknown,
+                });
+            }
+        }
+        live = next;
+        level = next_level;
+        if !query_live || round >= MAX_ROUNDS {
+            break;
+        }
+    }
+    let points = w
+        .points
+        .iter()
+        .zip(&w.point_cell)
+        .filter(|(_, c)| w.in_query(&w.rel_of(**c as usize)))
+        .map(|(p, _)| *p)
+        .collect();
+    Run {
+        points: Some(points),
+        rounds: round,
+    }
+}
