@@ -302,8 +302,8 @@ pub use crate::error::Error;
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::random::{DefaultRng, seeded_rng};
 pub use crate::render::{
-    CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler,
-    PoissonPixelSampler,
+    CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, NET_MAX_SAMPLES_PER_PIXEL,
+    NetPixelSampler, PixelSampler, PoissonPixelSampler,
 };
 pub use crate::sampler::{
     Builder, DEFAULT_ATTEMPTS, Everywhere, Iter, MAX_ATTEMPTS, PoissonDisk, PoissonDisk2,
