@@ -144,9 +144,11 @@ impl Layout {
     fn build(n: u32) -> Self {
         let units: Vec<u32> = (1..n.max(2)).filter(|&u| gcd(u, n) == 1).collect();
         let units = if units.is_empty() { vec![1] } else { units };
-        if n.is_power_of_two() {
+        let bank = NETS
+            .get(n.trailing_zeros() as usize)
+            .filter(|_| n.is_power_of_two());
+        if let Some(&rows) = bank {
             let m = n.trailing_zeros();
-            let rows: &'static [u16] = NETS.get(m as usize).copied().unwrap_or(&[0]);
             let sets = u32::try_from(rows.len() / n as usize).unwrap_or(1).max(1);
             let mut layout = Self {
                 n,
