@@ -48,6 +48,9 @@ use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// Improving moves a repair step collects before it picks the cheapest.
+const REPAIR_CANDIDATES: usize = 64;
+
 /// SplitMix64: the generator's random stream.
 struct Rng(u64);
 
@@ -366,7 +369,7 @@ impl Bank {
         // that costs the least spacing energy. Until the penalty is 0.
         let mut kicks = 0;
         while penalty > 0 {
-            let Some(best) = self.repair_step() else {
+            let Some(best) = self.repair_step(rng) else {
                 if std::env::var_os("NET_BANK_DEBUG").is_some() {
                     eprintln!("  repair: stuck at penalty {penalty}, kick {kicks}");
                 }
@@ -410,15 +413,23 @@ impl Bank {
     /// gains, and only two are removals... so at least one removal is from
     /// an overfull orbit), so the second swap is sought among those; the
     /// first is any swap that raises the penalty by at most 4.
-    fn repair_step(&mut self) -> Option<Vec<(usize, usize, usize)>> {
-        let mut best: Option<(i64, f64, Vec<(usize, usize, usize)>)> = None;
-        let mut consider = |dp: i64, de: f64, moves: Vec<(usize, usize, usize)>| {
-            if dp < 0
-                && best
+    fn repair_step(&mut self, rng: &mut Rng) -> Option<Vec<(usize, usize, usize)>> {
+        type Found = Option<(i64, f64, Vec<(usize, usize, usize)>)>;
+        let mut best: Found = None;
+        let mut found = 0usize;
+        let consider = |best: &mut Found,
+                        found: &mut usize,
+                        dp: i64,
+                        de: f64,
+                        moves: Vec<(usize, usize, usize)>| {
+            if dp < 0 {
+                *found += 1;
+                if best
                     .as_ref()
                     .is_none_or(|(bp, be, _)| dp < *bp || (dp == *bp && de < *be))
-            {
-                best = Some((dp, de, moves));
+                {
+                    *best = Some((dp, de, moves));
+                }
             }
         };
         // The points of every orbit.
@@ -428,8 +439,22 @@ impl Bank {
                 members[self.orbit(c, self.rows[s][c])].push((s, c));
             }
         }
-        for s in 0..self.sets {
-            for c in 0..self.n {
+        // Orbits over their count now; a first swap can only add the two
+        // orbits its points move to, whose other points are in `members`
+        // and whose moved points are tried below.
+        let overfull: Vec<usize> = (0..self.counts.len())
+            .filter(|&o| self.counts[o] > self.targets[o])
+            .collect();
+        // First swaps in a random order; the search stops once it has seen
+        // REPAIR_CANDIDATES improving moves and takes the cheapest of them
+        // (the whole scan is slow at 256 points and beyond).
+        let (sets, n) = (self.sets, self.n);
+        let (s0, c0) = (rng.below(sets), rng.below(n));
+        for s in (0..sets).map(|k| (k + s0) % sets) {
+            if found >= REPAIR_CANDIDATES {
+                break;
+            }
+            for c in (0..n).map(|k| (k + c0) % n) {
                 for level in 0..self.m {
                     let d = self.partner(s, c, level);
                     if c > d {
@@ -441,11 +466,16 @@ impl Bank {
                     }
                     let e1 = self.swap_energy(s, c, d);
                     if dp1 < 0 {
-                        consider(dp1, e1, vec![(s, c, d)]);
+                        consider(&mut best, &mut found, dp1, e1, vec![(s, c, d)]);
                     }
                     self.apply_counts(s, c, d);
                     self.swap(s, c, d);
-                    for o in 0..self.counts.len() {
+                    let moved = [
+                        self.orbit(c, self.rows[s][c]),
+                        self.orbit(d, self.rows[s][d]),
+                    ];
+                    let fresh = moved.iter().filter(|o| !overfull.contains(o));
+                    for &o in overfull.iter().chain(fresh) {
                         if self.counts[o] <= self.targets[o] {
                             continue;
                         }
@@ -458,7 +488,13 @@ impl Bank {
                                 let dp2 = self.penalty_delta(s2, c2, d2);
                                 if dp1 + dp2 < 0 {
                                     let e2 = self.swap_energy(s2, c2, d2);
-                                    consider(dp1 + dp2, e1 + e2, vec![(s, c, d), (s2, c2, d2)]);
+                                    consider(
+                                        &mut best,
+                                        &mut found,
+                                        dp1 + dp2,
+                                        e1 + e2,
+                                        vec![(s, c, d), (s2, c2, d2)],
+                                    );
                                 }
                             }
                         }
@@ -470,7 +506,13 @@ impl Bank {
                             let dp2 = self.penalty_delta(s, c2, d2);
                             if dp1 + dp2 < 0 {
                                 let e2 = self.swap_energy(s, c2, d2);
-                                consider(dp1 + dp2, e1 + e2, vec![(s, c, d), (s, c2, d2)]);
+                                consider(
+                                    &mut best,
+                                    &mut found,
+                                    dp1 + dp2,
+                                    e1 + e2,
+                                    vec![(s, c, d), (s, c2, d2)],
+                                );
                             }
                         }
                     }
