@@ -1,7 +1,7 @@
 //! `NetPixelSampler` through its public API: every pixel's film offsets and
 //! every 2-D pair (lens after time, so starting at an odd dimension, and
-//! the integrator's) are (0,m,2)-nets at 4, 16, 64 and 256 samples, and
-//! stratified in x and y at other counts; 1-D values are stratified; the
+//! the integrator's) are (0,m,2)-nets at 2 to 128 samples (256 is not in
+//! the bank yet), and stratified in x and y at other counts; 1-D values are stratified; the
 //! spacing floors hold (ρ measured by a naive all-pairs oracle); values are
 //! a pure function of (seed, pixel, index, dimension) on any thread; bad
 //! input is an error.
@@ -104,7 +104,17 @@ fn min_distance(points: &[[f64; 2]]) -> f64 {
 
 #[test]
 fn every_pixel_and_pair_is_a_net_at_powers_of_two() {
-    for (spp, side) in [(4u32, 8u32), (16, 6), (64, 4), (256, 2)] {
+    // 256 is not in the bank yet (docs/nets.md): a stratified lattice,
+    // checked with the other counts below.
+    for (spp, side) in [
+        (2u32, 8u32),
+        (4, 8),
+        (8, 8),
+        (16, 6),
+        (32, 4),
+        (64, 4),
+        (128, 3),
+    ] {
         let mut s = NetPixelSampler::new(spp, 3).unwrap();
         assert!(s.is_net(), "spp {spp}");
         for y in 0..side {
@@ -126,9 +136,9 @@ fn every_pixel_and_pair_is_a_net_at_powers_of_two() {
 
 #[test]
 fn other_counts_are_stratified_in_both_projections() {
-    for spp in [2u32, 3, 5, 6, 7, 10, 12, 24, 100, 255] {
+    for spp in [2u32, 3, 5, 6, 7, 10, 12, 24, 100, 255, 256] {
         let mut s = NetPixelSampler::new(spp, 9).unwrap();
-        assert_eq!(s.is_net(), spp.is_power_of_two(), "spp {spp}");
+        assert_eq!(s.is_net(), spp.is_power_of_two() && spp <= 128, "spp {spp}");
         let n = spp as usize;
         for at in [[0, 0], [5, 1], [1000, 77]] {
             let d = pixel(&mut s, at);

@@ -27,7 +27,7 @@ const SECOND: u64 = 0xbe54_66cf_34e9_0c6c;
 const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
 
 /// A [`PixelSampler`] whose film offsets and every 2-D pair of every pixel
-/// are a **Poisson disk net**: for `spp = 2^m` a (0,m,2)-net (every
+/// are a **Poisson disk net**: for `spp = 2^m` (up to 128) a (0,m,2)-net (every
 /// elementary interval of area `1/spp` holds exactly one sample) whose
 /// points also keep a large toroidal minimum distance; for other counts a
 /// set stratified in both 1-D projections (one sample in every column and
@@ -38,10 +38,11 @@ const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
 /// Sets live on the `n × n` grid of cells (`n = spp`): one point per cell
 /// it occupies, and every point at the same offset inside its cell, so the
 /// set's distances are exactly those of its cells.
-/// - `n = 2^m`: a bank of nets built offline by `examples/net_bank.rs`
+/// - `n = 2^m` up to 128: a bank of nets built offline by `examples/net_bank.rs`
 ///   (simulated annealing over swaps that keep the net property, with a
 ///   balance constraint; the table is `src/render/net_table.rs`).
-/// - Other `n`: the rank-1 lattice `(c, a·c mod n)` whose multiplier `a`
+/// - Other `n` (and, for now, 256, whose bank the generator has not yet
+///   balanced in time: see `docs/nets.md`): the rank-1 lattice `(c, a·c mod n)` whose multiplier `a`
 ///   (coprime to `n`) gives the largest minimum distance, found in
 ///   [`new`](Self::new).
 ///
@@ -58,8 +59,8 @@ const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
 ///
 /// # Guarantees
 /// 1. Exactly `spp` samples per pixel in every dimension; film offsets and
-///    every 2-D pair are a (0,m,2)-net when `spp = 2^m` (up to 256), and
-///    stratified in x and in y otherwise; 1-D values hold one value in
+///    every 2-D pair are a (0,m,2)-net when `spp = 2^m` up to 128
+///    ([`is_net`](Self::is_net)), and stratified in x and in y otherwise; 1-D values hold one value in
 ///    every `[j/spp, (j+1)/spp)`.
 /// 2. The toroidal minimum distance between a pixel's points in any 2-D
 ///    dimension is at least [`min_distance_2d`](Self::min_distance_2d);
@@ -428,7 +429,7 @@ impl NetPixelSampler {
     }
 
     /// Whether every pixel's film offsets and 2-D pairs are (0,m,2)-nets:
-    /// `spp` is a power of two.
+    /// `spp` is a power of two the bank holds (1 to 128).
     pub fn is_net(&self) -> bool {
         self.layout.m.is_some()
     }
@@ -600,7 +601,7 @@ mod tests {
 
     #[test]
     fn every_index_is_equally_likely_in_every_cell_for_nets() {
-        for m in 0..=8 {
+        for m in 0..NETS.len() {
             assert_balanced(1 << m);
         }
     }
@@ -609,6 +610,41 @@ mod tests {
     fn every_index_is_equally_likely_in_every_cell_for_lattices() {
         for n in [3, 5, 6, 7, 12, 24, 33] {
             assert_balanced(n);
+        }
+    }
+
+    #[test]
+    fn every_bank_entry_is_a_net_with_its_spacing() {
+        // The generated table itself: every entry of every count is a
+        // (0,m,2)-net on the grid of cells, and the bank's smallest
+        // distance is what min_distance_2d reports.
+        for m in 0..u32::try_from(NETS.len()).unwrap() {
+            let n = 1u32 << m;
+            let layout = Layout::build(n);
+            assert_eq!(layout.m, Some(m), "n {n} is not read as a net");
+            assert_eq!(
+                NETS[m as usize].len() % n as usize,
+                0,
+                "n {n}: ragged table"
+            );
+            for set in 0..layout.sets {
+                for k in 0..=m {
+                    let mut seen = vec![false; n as usize];
+                    for c in 0..n {
+                        let [x, y] = layout.cell(set, c);
+                        assert!(y < n, "n {n}, set {set}: row {y}");
+                        let cell = (x >> (m - k)) << (m - k) | y >> k;
+                        assert!(
+                            !std::mem::replace(&mut seen[cell as usize], true),
+                            "n {n}, set {set}: not a net at k = {k}"
+                        );
+                    }
+                }
+            }
+            if n >= 4 {
+                let d2 = layout.min_d2_cells.unwrap();
+                assert!(d2 >= 2, "n {n}: cells {d2} apart");
+            }
         }
     }
 
