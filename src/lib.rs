@@ -334,8 +334,8 @@ pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::incomplete::Incomplete;
 pub use crate::random::{DefaultRng, seeded_rng};
 pub use crate::render::{
-    CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, PixelSampler,
-    PoissonPixelSampler,
+    CameraPixel, CameraPixels, CameraSample, MAX_SAMPLES_PER_PIXEL, NET_MAX_SAMPLES_PER_PIXEL,
+    NetPixelSampler, PixelSampler, PoissonPixelSampler,
 };
 pub use crate::sampler::{
     DEFAULT_ATTEMPTS, Everywhere, MAX_ATTEMPTS, Points, PoissonDisk, PoissonDisk2, PoissonDisk3,

@@ -17,6 +17,9 @@ mod streaming;
 #[path = "../fuzz/common/camera.rs"]
 mod camera;
 
+#[path = "../fuzz/common/nets.rs"]
+mod nets;
+
 #[cfg(feature = "serde")]
 #[path = "../fuzz/common/config_json.rs"]
 mod config_json;
@@ -77,6 +80,11 @@ fn camera_corpus() {
     replay("camera", camera::run);
 }
 
+#[test]
+fn nets_corpus() {
+    replay("nets", nets::run);
+}
+
 #[cfg(feature = "serde")]
 #[test]
 fn config_json_corpus() {
@@ -109,5 +117,28 @@ fn camera_decodes_short_inputs() {
         camera::run(&vec![0xff; len]);
         camera::run(&vec![0; len]);
         camera::run(&vec![1; len]);
+    }
+}
+
+/// The decoder accepts every input, even an empty one; and a few hundred
+/// pseudo-random inputs pass the model (a bounded sweep, not a fuzzer).
+#[test]
+fn nets_decodes_short_and_random_inputs() {
+    for len in 0..=3 {
+        nets::run(&vec![0xff; len]);
+        nets::run(&vec![0; len]);
+        nets::run(&vec![6; len]);
+    }
+    let mut state = 0x5eed_u64;
+    for _ in 0..300 {
+        let bytes: Vec<u8> = (0..96)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (state >> 56) as u8
+            })
+            .collect();
+        nets::run(&bytes);
     }
 }

@@ -92,7 +92,9 @@ impl Args {
 fn sampler_list(text: &str) -> Result<Vec<String>, String> {
     let names: Vec<String> = common::list(text)?;
     for name in &names {
-        if !samplers::NAMES.contains(&name.as_str()) {
+        if !samplers::NAMES.contains(&name.as_str())
+            && !samplers::EXTRA_NAMES.contains(&name.as_str())
+        {
             return Err(format!(
                 "unknown sampler {name:?}; known: {}",
                 samplers::NAMES.join(",")

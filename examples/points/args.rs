@@ -52,7 +52,7 @@ Examples:
     after_help = AFTER,
     override_usage = "points --dim D (--radius R | --count N | --radius-range R0,R1) [OPTIONS]\n       \
                       points --pixels WxH (--radius R | --per-pixel N | --exact N) [--paper] [OPTIONS]\n       \
-                      points --pixels WxH --camera --spp N [--dims D] [--stream] [OPTIONS]",
+                      points --pixels WxH --camera --spp N [--dims D] [--stream | --sampler KIND] [OPTIONS]",
     allow_negative_numbers = true,
     group = clap::ArgGroup::new("spacing").args(["radius", "per_pixel", "exact"]),
 )]
@@ -160,6 +160,21 @@ pub(crate) struct Args {
     /// across pixel borders) instead of the random-access pixel sampler
     #[arg(long, requires = "camera")]
     stream: bool,
+    /// With --camera: the random-access pixel sampler (poisson:
+    /// PoissonPixelSampler; net: NetPixelSampler, (0,m,2)-nets kept well
+    /// spaced, at most 256 per pixel) [default: poisson]; not with --stream
+    #[arg(long, value_name = "KIND", value_enum, requires = "camera")]
+    sampler: Option<SamplerArg>,
+}
+
+/// The pixel sampler behind `--camera`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SamplerArg {
+    /// `PoissonPixelSampler`: Poisson disk sets in every dimension
+    #[default]
+    Poisson,
+    /// `NetPixelSampler`: Poisson disk nets
+    Net,
 }
 
 /// What to write.
@@ -240,6 +255,8 @@ pub(crate) struct Camera {
     pub(crate) dims: u32,
     /// `--stream`: film points from `CameraPixels` (exact scheme).
     pub(crate) stream: bool,
+    /// `--sampler`: the random-access pixel sampler.
+    pub(crate) sampler: SamplerArg,
 }
 
 /// A usage error in clap's format (exit code 2).
@@ -258,10 +275,17 @@ impl Args {
                     ));
                 }
                 let camera = match self.spp.filter(|_| self.camera) {
+                    Some(_) if self.stream && self.sampler.is_some() => {
+                        return Err(invalid(
+                            "--sampler picks the random-access pixel sampler; --stream has its own"
+                                .to_owned(),
+                        ));
+                    }
                     Some(spp) if self.dims >= 5 => Some(Camera {
                         spp,
                         dims: self.dims,
                         stream: self.stream,
+                        sampler: self.sampler.unwrap_or_default(),
                     }),
                     Some(_) => {
                         return Err(invalid(format!(
@@ -487,9 +511,16 @@ mod tests {
             Some(Camera {
                 spp: 16,
                 dims: 7,
-                stream: true
+                stream: true,
+                sampler: SamplerArg::Poisson,
             }),
             "camera settings"
+        );
+        let net = config("--pixels 4x3 --camera --spp 16 --sampler net");
+        assert_eq!(
+            net.raster.and_then(|r| r.camera).map(|c| c.sampler),
+            Some(SamplerArg::Net),
+            "--sampler net"
         );
         assert_eq!((c.dim, c.seed), (2, 3), "dim and seed");
         let r = config("--pixels=5x7 --radius 0.8 --dim 2");
@@ -513,6 +544,9 @@ mod tests {
             "--dim 2 --radius 1 --exact 4",
             "--pixels 5x7 --exact 4 --per-pixel 4",
             "--pixels 5x7 --exact -1",
+            "--pixels 5x7 --camera --spp 4 --stream --sampler net",
+            "--pixels 5x7 --camera --spp 4 --stream --sampler poisson",
+            "--pixels 5x7 --camera --spp 4 --sampler sobol",
         ] {
             let e = error(bad);
             assert_eq!(e.exit_code(), 2, "{bad}: exit code");

@@ -3,12 +3,15 @@
 //! lens_u,lens_v,time,d5,..`. Film positions are in raster coordinates,
 //! every other value in `[0, 1)`; each pixel has exactly `N` samples.
 //! Without `--stream` they come from the random-access
-//! `PoissonPixelSampler`; with it, from `CameraPixels`, whose film points
+//! `PoissonPixelSampler` (or, with `--sampler net`, `NetPixelSampler`);
+//! with it, from `CameraPixels`, whose film points
 //! are a `Tiled` stream in the exact scheme (one set across pixel borders).
 
-use crate::args::{Camera, Config, Format, Raster};
+use crate::args::{Camera, Config, Format, Raster, SamplerArg};
 use crate::common::{Failure, report};
-use bridson::{CameraPixels, CameraSample, PixelSampler, PoissonPixelSampler, Tiled};
+use bridson::{
+    CameraPixels, CameraSample, NetPixelSampler, PixelSampler, PoissonPixelSampler, Tiled,
+};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::time::Instant;
@@ -38,7 +41,11 @@ pub(crate) fn run(config: &Config, raster: Raster, camera: Camera) -> Result<(),
         raster.width,
         raster.height,
         camera.spp,
-        if camera.stream { ", streamed" } else { "" }
+        match (camera.stream, camera.sampler) {
+            (true, _) => ", streamed",
+            (false, SamplerArg::Poisson) => "",
+            (false, SamplerArg::Net) => ", nets",
+        }
     ));
     Ok(())
 }
@@ -92,9 +99,18 @@ fn write<W: Write>(
             }
         }
     } else {
-        let mut sampler = PoissonPixelSampler::new(camera.spp, seed)
-            .map_err(usage)?
-            .with_resolution([width, height]);
+        let mut sampler: Box<dyn PixelSampler> = match camera.sampler {
+            SamplerArg::Poisson => Box::new(
+                PoissonPixelSampler::new(camera.spp, seed)
+                    .map_err(usage)?
+                    .with_resolution([width, height]),
+            ),
+            SamplerArg::Net => Box::new(
+                NetPixelSampler::new(camera.spp, seed)
+                    .map_err(usage)?
+                    .with_resolution([width, height]),
+            ),
+        };
         let mut more = Vec::new();
         for py in 0..height {
             for px in 0..width {

@@ -38,6 +38,7 @@ impl<'a> Bytes<'a> {
         u64::from_le_bytes(self.array())
     }
 
+    #[allow(dead_code, reason = "not every target uses it")]
     pub(crate) fn f64_bits(&mut self) -> f64 {
         f64::from_bits(self.u64())
     }

@@ -1,14 +1,18 @@
 //! Camera samples for renderers: the [`PixelSampler`] trait, shaped like
 //! pbrt-v4's `Sampler`, its Poisson disk implementation
-//! [`PoissonPixelSampler`], and [`CameraPixels`], the paper's streaming
+//! [`PoissonPixelSampler`], its Poisson disk net implementation
+//! [`NetPixelSampler`], and [`CameraPixels`], the paper's streaming
 //! form, whose film points come from a [`Tiled`](crate::Tiled) stream.
 
 mod bank;
 mod eliminate;
 mod hash;
+mod net;
+mod net_table;
 mod pixel;
 mod stream;
 
+pub use net::{NET_MAX_SAMPLES_PER_PIXEL, NetPixelSampler};
 pub use pixel::{MAX_SAMPLES_PER_PIXEL, PoissonPixelSampler};
 pub use stream::{CameraPixel, CameraPixels};
 

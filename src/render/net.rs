@@ -1,0 +1,674 @@
+//! [`NetPixelSampler`]: Poisson disk nets, sets that are stratified like a
+//! (0,m,2)-net and spaced like a Poisson disk set at once, in every
+//! dimension of every pixel.
+
+use super::hash::mix;
+use super::net_table::NETS;
+use super::{CameraSample, PixelSampler};
+use crate::Error;
+use std::sync::Arc;
+
+/// The largest sample count per pixel [`NetPixelSampler`] accepts.
+pub const NET_MAX_SAMPLES_PER_PIXEL: u32 = 256;
+
+/// Separates a draw's hash input by kind, as in the Poisson sampler.
+const TAG_FILM: u64 = 0;
+const TAG_1D: u64 = 1;
+const TAG_2D: u64 = 2;
+
+/// Salts the user's seed before it is mixed (not the Poisson sampler's
+/// salt: the two samplers draw unrelated sets for the same seed).
+const SEED_SALT: u64 = 0x4528_21e6_38d0_1377;
+
+/// Separates a draw's second hash input from its first.
+const SECOND: u64 = 0xbe54_66cf_34e9_0c6c;
+
+/// Separates a lattice draw's shift hash from the move hash.
+const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
+
+/// A [`PixelSampler`] whose film offsets and every 2-D pair of every pixel
+/// are a **Poisson disk net**: for `spp = 2^m` (up to 128) a (0,m,2)-net (every
+/// elementary interval of area `1/spp` holds exactly one sample) whose
+/// points also keep a large toroidal minimum distance; for other counts a
+/// set stratified in both 1-D projections (one sample in every column and
+/// every row of the `spp × spp` grid), just as well spaced. Every 1-D
+/// dimension (time, …) is a stratified set of evenly spaced values.
+///
+/// # How a set is made
+/// Sets live on the `n × n` grid of cells (`n = spp`): one point per cell
+/// it occupies, and every point at the same offset inside its cell, so the
+/// set's distances are exactly those of its cells.
+/// - `n = 2^m` up to 128: a bank of nets built offline by `examples/net_bank.rs`
+///   (simulated annealing over swaps that keep the net property, with a
+///   balance constraint; the table is `src/render/net_table.rs`).
+/// - Other `n` (and, for now, 256, whose bank the generator has not yet
+///   balanced in time: see `docs/nets.md`): the rank-1 lattice `(c, a·c mod n)` whose multiplier `a`
+///   (coprime to `n`) gives the largest minimum distance, found in
+///   [`new`](Self::new).
+///
+/// A draw at (pixel, dimension) hashes the seed, the pixel, the dimension
+/// and the draw's kind into moves that keep both the stratification and
+/// every distance:
+/// - the bank entry (nets);
+/// - shifts by a half in x and y, reflections in x and y, and the x↔y swap
+///   (nets: 32 moves); shifts by whole cells, both reflections and the swap
+///   (lattices);
+/// - the common offset inside the cells, uniform;
+/// - which point is sample `index`: `(u·index + k) mod n`, `u` a unit
+///   mod `n`, `k` uniform.
+///
+/// # Guarantees
+/// 1. Exactly `spp` samples per pixel in every dimension; film offsets and
+///    every 2-D pair are a (0,m,2)-net when `spp = 2^m` up to 128
+///    ([`is_net`](Self::is_net)), and stratified in x and in y otherwise; 1-D values hold one value in
+///    every `[j/spp, (j+1)/spp)`.
+/// 2. The toroidal minimum distance between a pixel's points in any 2-D
+///    dimension is at least [`min_distance_2d`](Self::min_distance_2d);
+///    1-D values are `1/spp` apart (to 2⁻³²).
+/// 3. Balanced: over the bank entries and the moves, every sample index is
+///    equally likely in every cell of the `spp × spp` grid (the tests
+///    enumerate them), and the offset inside the cell is uniform, so each
+///    value is uniform on the 2⁻³² grid and estimates are unbiased.
+/// 4. Values are a pure function of (seed, pixel, sample index,
+///    dimension), as the [`PixelSampler`] contract asks.
+///
+/// # Example: a (0,4,2)-net of film offsets in every pixel
+/// ```
+/// use bridson::{NetPixelSampler, PixelSampler};
+/// let mut sampler = NetPixelSampler::new(16, 7)?.with_resolution([64, 48]);
+/// let mut films = Vec::new();
+/// for index in 0..16 {
+///     sampler.start_pixel_sample([10, 20], index, 0)?;
+///     films.push(sampler.camera_sample().film);
+/// }
+/// // Every elementary interval of area 1/16 holds exactly one offset.
+/// for k in 0..=4 {
+///     let (columns, rows) = (1u32 << k, 16u32 >> k);
+///     let mut seen = [false; 16];
+///     for [x, y] in &films {
+///         let cell = (x * f64::from(columns)) as u32 * rows + (y * f64::from(rows)) as u32;
+///         assert!(!std::mem::replace(&mut seen[cell as usize], true));
+///     }
+/// }
+/// assert!(sampler.start_pixel_sample([0, 0], 16, 0).is_err());
+/// # Ok::<(), bridson::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct NetPixelSampler {
+    layout: Arc<Layout>,
+    seed: u64,
+    /// `mix(seed ^ SEED_SALT)`.
+    seed_hash: u64,
+    resolution: Option<[u32; 2]>,
+    pixel: [u32; 2],
+    /// `mix(seed_hash ^ pixel)`, for the current pixel.
+    pixel_hash: u64,
+    index: u32,
+    dimension: u32,
+}
+
+/// What one sample count's sets are made of.
+#[derive(Debug)]
+pub(crate) struct Layout {
+    /// Samples per pixel, `n`.
+    n: u32,
+    /// `Some(m)` when `n = 2^m` (the net bank), else `None` (the lattice).
+    m: Option<u32>,
+    /// Nets: the bank, `sets` nets of `n` rows (row of column `c`).
+    rows: &'static [u16],
+    sets: u32,
+    /// Lattices: the multiplier.
+    a: u32,
+    /// The units mod `n` that map sample indices to points.
+    units: Vec<u32>,
+    /// The smallest toroidal minimum distance of any set, in cells².
+    min_d2_cells: Option<u64>,
+}
+
+/// A draw's moves, all of them chosen by hash: which set, the symmetry,
+/// the cell shift, which point is sample `index`, the offset in the cell.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Moves {
+    /// The bank entry (nets; 0 for lattices).
+    pub(crate) set: u32,
+    /// Bits 0-1: x flip class (nets: none, half shift, reflection, both;
+    /// lattices: bit 0 reflects x), bits 2-3 the same for y, bit 4 the swap.
+    pub(crate) symmetry: u32,
+    /// Lattices: the shift in cells, x and y.
+    pub(crate) shift: [u32; 2],
+    /// Sample `index` takes point `(unit · index + key) mod n`.
+    pub(crate) unit: u32,
+    pub(crate) key: u32,
+}
+
+impl Layout {
+    fn build(n: u32) -> Self {
+        let units: Vec<u32> = (1..n.max(2)).filter(|&u| gcd(u, n) == 1).collect();
+        let units = if units.is_empty() { vec![1] } else { units };
+        let bank = NETS
+            .get(n.trailing_zeros() as usize)
+            .filter(|_| n.is_power_of_two());
+        if let Some(&rows) = bank {
+            let m = n.trailing_zeros();
+            let sets = u32::try_from(rows.len() / n as usize).unwrap_or(1).max(1);
+            let mut layout = Self {
+                n,
+                m: Some(m),
+                rows,
+                sets,
+                a: 1,
+                units,
+                min_d2_cells: None,
+            };
+            layout.min_d2_cells = (0..sets).filter_map(|s| layout.set_min_d2(s)).min();
+            layout
+        } else {
+            // The multiplier with the largest minimum distance; ties go to
+            // the smallest.
+            let mut best = (0, 1);
+            for &a in &units {
+                let d2 = lattice_min_d2(n, a);
+                if d2 > best.0 {
+                    best = (d2, a);
+                }
+            }
+            Self {
+                n,
+                m: None,
+                rows: &[],
+                sets: 1,
+                a: best.1,
+                units,
+                min_d2_cells: (n > 1).then_some(best.0),
+            }
+        }
+    }
+
+    /// The unmoved cell of point `slot` of set `set`.
+    #[inline(always)]
+    fn cell(&self, set: u32, slot: u32) -> [u32; 2] {
+        if self.m.is_some() {
+            let at = set as usize * self.n as usize + slot as usize;
+            [slot, u32::from(self.rows.get(at).copied().unwrap_or(0))]
+        } else {
+            let y = u64::from(slot) * u64::from(self.a) % u64::from(self.n);
+            #[expect(clippy::cast_possible_truncation, reason = "below n, a u32")]
+            let y = y as u32;
+            [slot, y]
+        }
+    }
+
+    /// The cell of sample `index` under `moves`.
+    #[inline(always)]
+    pub(crate) fn place(&self, moves: Moves, index: u32) -> [u32; 2] {
+        let n = self.n;
+        let slot = self.slot(moves, index);
+        let [mut x, mut y] = self.cell(moves.set, slot);
+        if self.m.is_some() {
+            // Bit 0: a half shift; bit 1: a reflection (all bits flipped).
+            let flip = |bits: u32| ((n >> 1) * (bits & 1)) ^ ((n - 1) * (bits >> 1 & 1));
+            x ^= flip(moves.symmetry);
+            y ^= flip(moves.symmetry >> 2);
+        } else {
+            x = add_mod(x, moves.shift[0], n);
+            y = add_mod(y, moves.shift[1], n);
+            if moves.symmetry & 1 == 1 {
+                x = n - 1 - x;
+            }
+            if moves.symmetry & 4 == 4 {
+                y = n - 1 - y;
+            }
+        }
+        if moves.symmetry & 16 == 16 {
+            [y, x]
+        } else {
+            [x, y]
+        }
+    }
+
+    /// The point of sample `index`: `(unit · index + key) mod n`.
+    #[inline(always)]
+    pub(crate) fn slot(&self, moves: Moves, index: u32) -> u32 {
+        let v = u64::from(moves.unit) * u64::from(index) + u64::from(moves.key);
+        let v = match self.m {
+            Some(m) => v & ((1 << m) - 1),
+            None => v % u64::from(self.n),
+        };
+        #[expect(clippy::cast_possible_truncation, reason = "below n, a u32")]
+        let v = v as u32;
+        v
+    }
+
+    /// The moves a hash chooses. Nets: bits 0-4 the symmetry, the next
+    /// `log2(sets)` the bank entry, bits 12-43 the unit, the top `m` the
+    /// key, so that entry, symmetry and key are exactly uniform and
+    /// independent. Lattices: bits 0-4 the symmetry, 5-31 the unit, 32-63
+    /// the key, and a second hash the shifts (uniform to within `n/2³²`).
+    #[inline(always)]
+    fn moves(&self, h: u64) -> Moves {
+        let n = self.n;
+        let len = u32::try_from(self.units.len()).unwrap_or(u32::MAX);
+        #[expect(clippy::cast_possible_truncation, reason = "bit fields of the hash")]
+        match self.m {
+            Some(m) => Moves {
+                set: (h >> 5) as u32 & (self.sets - 1),
+                symmetry: h as u32 & 31,
+                shift: [0, 0],
+                unit: self.unit(below_u32((h >> 12) as u32, len)),
+                key: if m == 0 { 0 } else { (h >> (64 - m)) as u32 },
+            },
+            None => {
+                let shifts = mix(h ^ THIRD);
+                Moves {
+                    set: 0,
+                    symmetry: h as u32 & 31,
+                    shift: [
+                        below_u32((shifts >> 32) as u32, n),
+                        below_u32(shifts as u32, n),
+                    ],
+                    unit: self.unit(below_u32((h as u32) & !31, len)),
+                    key: below_u32((h >> 32) as u32, n),
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn unit(&self, at: u32) -> u32 {
+        self.units.get(at as usize).copied().unwrap_or(1)
+    }
+
+    /// A cell coordinate and a 32-bit offset as a value in `[0, 1)`:
+    /// `(c + offset / 2³²) / n`, rounded down to the 2⁻³² grid.
+    #[inline(always)]
+    fn value(&self, c: u32, offset: u32) -> f64 {
+        let v = u64::from(c) << 32 | u64::from(offset);
+        let q = match self.m {
+            Some(m) => v >> m,
+            None => v / u64::from(self.n),
+        };
+        #[expect(clippy::cast_precision_loss, reason = "q < 2^32 is exact in f64")]
+        let q = q as f64;
+        q * (1.0 / 4_294_967_296.0)
+    }
+
+    fn set_min_d2(&self, set: u32) -> Option<u64> {
+        let n = self.n;
+        let mut best: Option<u64> = None;
+        for a in 0..n {
+            for b in a + 1..n {
+                let [ax, ay] = self.cell(set, a);
+                let [bx, by] = self.cell(set, b);
+                let d2 = torus_d2(ax, bx, n) + torus_d2(ay, by, n);
+                best = Some(best.map_or(d2, |x| x.min(d2)));
+            }
+        }
+        best
+    }
+}
+
+#[inline(always)]
+fn add_mod(a: u32, b: u32, n: u32) -> u32 {
+    let s = u64::from(a) + u64::from(b);
+    let n = u64::from(n);
+    #[expect(clippy::cast_possible_truncation, reason = "below n, a u32")]
+    let r = (if s >= n { s - n } else { s }) as u32;
+    r
+}
+
+/// A uniform index in `0..n` from 32 hash bits (multiply-high).
+#[inline(always)]
+fn below_u32(h: u32, n: u32) -> u32 {
+    ((u64::from(h) * u64::from(n)) >> 32) as u32
+}
+
+fn gcd(mut a: u32, mut b: u32) -> u32 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+/// Squared toroidal distance along one axis of `n` cells.
+fn torus_d2(a: u32, b: u32, n: u32) -> u64 {
+    let d = a.abs_diff(b);
+    let d = u64::from(d.min(n - d));
+    d * d
+}
+
+/// The smallest squared toroidal distance, in cells², of the lattice
+/// `(c, a·c mod n)`: that of its shortest nonzero vector.
+fn lattice_min_d2(n: u32, a: u32) -> u64 {
+    (1..n)
+        .map(|c| {
+            #[expect(clippy::cast_possible_truncation, reason = "below n, a u32")]
+            let y = (u64::from(c) * u64::from(a) % u64::from(n)) as u32;
+            torus_d2(0, c, n) + torus_d2(0, y, n)
+        })
+        .min()
+        .unwrap_or(0)
+}
+
+impl NetPixelSampler {
+    /// A sampler of `spp` samples per pixel for `seed`, accepting any
+    /// pixel. It starts at pixel `[0, 0]`, sample 0, dimension 0.
+    ///
+    /// Cheap: the nets come from a table; a count that is not a power of
+    /// two searches its lattice multiplier, `O(spp²)`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSamplesPerPixel`] if `spp` is 0 or above
+    /// [`NET_MAX_SAMPLES_PER_PIXEL`].
+    pub fn new(spp: u32, seed: u64) -> Result<Self, Error> {
+        if !(1..=NET_MAX_SAMPLES_PER_PIXEL).contains(&spp) {
+            return Err(Error::InvalidSamplesPerPixel {
+                spp,
+                max: NET_MAX_SAMPLES_PER_PIXEL,
+            });
+        }
+        Ok(Self::from_layout(Arc::new(Layout::build(spp)), seed))
+    }
+
+    fn from_layout(layout: Arc<Layout>, seed: u64) -> Self {
+        let seed_hash = mix(seed ^ SEED_SALT);
+        Self {
+            layout,
+            seed,
+            seed_hash,
+            resolution: None,
+            pixel: [0, 0],
+            pixel_hash: pixel_hash(seed_hash, [0, 0]),
+            index: 0,
+            dimension: 0,
+        }
+    }
+
+    /// The same sampler for another seed, sharing its tables, at pixel
+    /// `[0, 0]`, sample 0, dimension 0, with the same resolution.
+    #[must_use]
+    pub fn with_seed(&self, seed: u64) -> Self {
+        Self {
+            resolution: self.resolution,
+            ..Self::from_layout(Arc::clone(&self.layout), seed)
+        }
+    }
+
+    /// The same sampler, told the image size `[width, height]`: from now on
+    /// a pixel with `x >= width` or `y >= height` is an error in
+    /// [`start_pixel_sample`](PixelSampler::start_pixel_sample).
+    #[must_use]
+    pub fn with_resolution(mut self, resolution: [u32; 2]) -> Self {
+        self.resolution = Some(resolution);
+        self
+    }
+
+    /// The seed.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// The image size, if the sampler was told it.
+    pub fn resolution(&self) -> Option<[u32; 2]> {
+        self.resolution
+    }
+
+    /// The current pixel.
+    pub fn pixel(&self) -> [u32; 2] {
+        self.pixel
+    }
+
+    /// The current sample index.
+    pub fn sample_index(&self) -> u32 {
+        self.index
+    }
+
+    /// The dimension the next [`get_1d`](PixelSampler::get_1d) or
+    /// [`get_2d`](PixelSampler::get_2d) draws.
+    pub fn dimension(&self) -> u32 {
+        self.dimension
+    }
+
+    /// Whether every pixel's film offsets and 2-D pairs are (0,m,2)-nets:
+    /// `spp` is a power of two the bank holds (1 to 128).
+    pub fn is_net(&self) -> bool {
+        self.layout.m.is_some()
+    }
+
+    /// A lower bound on the toroidal minimum distance between the points of
+    /// one pixel in any 2-D dimension (film, lens, …), on the unit torus:
+    /// the smallest over the sets the sampler draws from (less 2⁻³¹ when
+    /// `spp` is not a power of two, for rounding). `None` for one sample
+    /// per pixel.
+    pub fn min_distance_2d(&self) -> Option<f64> {
+        let d2 = self.layout.min_d2_cells?;
+        #[expect(clippy::cast_precision_loss, reason = "small integers")]
+        let (d2, n) = (d2 as f64, f64::from(self.layout.n));
+        // Net values are exact multiples of the cell size apart; lattice
+        // values are rounded down to the 2⁻³² grid one by one, which can
+        // bring two of them up to √2 · 2⁻³² closer.
+        let rounding = if self.layout.m.is_some() {
+            0.0
+        } else {
+            2.0 / 4_294_967_296.0
+        };
+        Some(d2.sqrt() / n - rounding)
+    }
+
+    #[inline(always)]
+    fn hashes(&self, tag: u64, dimension: u32) -> (u64, u64) {
+        let input = self.pixel_hash ^ (u64::from(dimension) << 2 | tag);
+        (mix(input), mix(input ^ SECOND))
+    }
+
+    #[inline(always)]
+    fn plane(&self, tag: u64, dimension: u32) -> [f64; 2] {
+        let (h, offsets) = self.hashes(tag, dimension);
+        let layout = &*self.layout;
+        let [x, y] = layout.place(layout.moves(h), self.index);
+        #[expect(clippy::cast_possible_truncation, reason = "the low word")]
+        let (ox, oy) = ((offsets >> 32) as u32, offsets as u32);
+        [layout.value(x, ox), layout.value(y, oy)]
+    }
+
+    #[inline(always)]
+    fn line(&self, dimension: u32) -> f64 {
+        let (h, offsets) = self.hashes(TAG_1D, dimension);
+        let layout = &*self.layout;
+        let slot = layout.slot(layout.moves(h), self.index);
+        let offset = (offsets >> 32) as u32;
+        layout.value(slot, offset)
+    }
+}
+
+/// The hash of a pixel under a seed.
+#[inline(always)]
+fn pixel_hash(seed_hash: u64, [x, y]: [u32; 2]) -> u64 {
+    mix(seed_hash ^ (u64::from(x) | u64::from(y) << 32))
+}
+
+impl PixelSampler for NetPixelSampler {
+    fn samples_per_pixel(&self) -> u32 {
+        self.layout.n
+    }
+
+    fn start_pixel_sample(
+        &mut self,
+        pixel: [u32; 2],
+        index: u32,
+        dimension: u32,
+    ) -> Result<(), Error> {
+        let spp = self.layout.n;
+        if index >= spp {
+            return Err(Error::SampleIndexOutOfRange { index, spp });
+        }
+        if let Some(resolution) = self.resolution
+            && (pixel[0] >= resolution[0] || pixel[1] >= resolution[1])
+        {
+            return Err(Error::PixelOutOfImage { pixel, resolution });
+        }
+        if pixel != self.pixel {
+            self.pixel = pixel;
+            self.pixel_hash = pixel_hash(self.seed_hash, pixel);
+        }
+        self.index = index;
+        self.dimension = dimension;
+        Ok(())
+    }
+
+    #[inline]
+    fn get_1d(&mut self) -> f64 {
+        let v = self.line(self.dimension);
+        self.dimension = self.dimension.wrapping_add(1);
+        v
+    }
+
+    #[inline]
+    fn get_2d(&mut self) -> [f64; 2] {
+        let v = self.plane(TAG_2D, self.dimension);
+        self.dimension = self.dimension.wrapping_add(2);
+        v
+    }
+
+    #[inline]
+    fn get_pixel_2d(&mut self) -> [f64; 2] {
+        self.plane(TAG_FILM, 0)
+    }
+
+    #[inline]
+    fn camera_sample(&mut self) -> CameraSample {
+        let d = self.dimension;
+        let film = self.plane(TAG_FILM, 0);
+        let time = self.line(d);
+        let lens = self.plane(TAG_2D, d.wrapping_add(1));
+        self.dimension = d.wrapping_add(3);
+        CameraSample { film, time, lens }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every move of a layout: bank entry, symmetry, shifts and key (the
+    /// unit is fixed: any unit gives the same counts, as `key` is added
+    /// after it).
+    fn every_move(layout: &Layout) -> Vec<Moves> {
+        let n = layout.n;
+        let mut out = Vec::new();
+        let shifts: Vec<[u32; 2]> = if layout.m.is_some() {
+            vec![[0, 0]]
+        } else {
+            (0..n).flat_map(|x| (0..n).map(move |y| [x, y])).collect()
+        };
+        for set in 0..layout.sets {
+            for symmetry in 0..32 {
+                for &shift in &shifts {
+                    for key in 0..n {
+                        out.push(Moves {
+                            set,
+                            symmetry,
+                            shift,
+                            unit: layout.units[layout.units.len() / 2],
+                            key,
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Over every move, each sample index falls equally often in every
+    /// cell of the `n × n` grid.
+    fn assert_balanced(n: u32) {
+        let layout = Layout::build(n);
+        let moves = every_move(&layout);
+        for index in 0..n {
+            let mut counts = vec![0u32; (n * n) as usize];
+            for &mv in &moves {
+                let [x, y] = layout.place(mv, index);
+                counts[(x * n + y) as usize] += 1;
+            }
+            let first = counts[0];
+            assert!(
+                counts.iter().all(|&c| c == first),
+                "n {n}, index {index}: counts from {} to {}",
+                counts.iter().min().unwrap(),
+                counts.iter().max().unwrap()
+            );
+        }
+    }
+
+    #[test]
+    fn every_index_is_equally_likely_in_every_cell_for_nets() {
+        for m in 0..NETS.len() {
+            assert_balanced(1 << m);
+        }
+    }
+
+    #[test]
+    fn every_index_is_equally_likely_in_every_cell_for_lattices() {
+        for n in [3, 5, 6, 7, 12, 24, 33] {
+            assert_balanced(n);
+        }
+    }
+
+    #[test]
+    fn every_bank_entry_is_a_net_with_its_spacing() {
+        // The generated table itself: every entry of every count is a
+        // (0,m,2)-net on the grid of cells, and the bank's smallest
+        // distance is what min_distance_2d reports.
+        for m in 0..u32::try_from(NETS.len()).unwrap() {
+            let n = 1u32 << m;
+            let layout = Layout::build(n);
+            assert_eq!(layout.m, Some(m), "n {n} is not read as a net");
+            assert_eq!(
+                NETS[m as usize].len() % n as usize,
+                0,
+                "n {n}: ragged table"
+            );
+            for set in 0..layout.sets {
+                for k in 0..=m {
+                    let mut seen = vec![false; n as usize];
+                    for c in 0..n {
+                        let [x, y] = layout.cell(set, c);
+                        assert!(y < n, "n {n}, set {set}: row {y}");
+                        let cell = (x >> (m - k)) << (m - k) | y >> k;
+                        assert!(
+                            !std::mem::replace(&mut seen[cell as usize], true),
+                            "n {n}, set {set}: not a net at k = {k}"
+                        );
+                    }
+                }
+            }
+            if n >= 4 {
+                let d2 = layout.min_d2_cells.unwrap();
+                assert!(d2 >= 2, "n {n}: cells {d2} apart");
+            }
+        }
+    }
+
+    #[test]
+    fn hashed_moves_stay_in_range() {
+        for n in [1, 2, 3, 16, 100, 256] {
+            let layout = Layout::build(n);
+            for k in 0..200u64 {
+                let mv = layout.moves(mix(k));
+                assert!(mv.set < layout.sets, "n {n}: set {}", mv.set);
+                assert!(mv.key < n.max(1), "n {n}: key {}", mv.key);
+                assert!(mv.shift.iter().all(|&s| s < n), "n {n}: shift");
+                assert!(gcd(mv.unit, n) == 1 || n == 1, "n {n}: unit {}", mv.unit);
+            }
+        }
+    }
+
+    #[test]
+    fn values_stay_below_one() {
+        for n in [1, 3, 16, 255] {
+            let layout = Layout::build(n);
+            let v = layout.value(n - 1, u32::MAX);
+            assert!(v < 1.0, "n {n}: {v}");
+            assert_eq!(layout.value(0, 0), 0.0, "n {n}");
+        }
+    }
+}
