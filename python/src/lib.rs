@@ -731,9 +731,12 @@ impl PoissonDisk {
                 array.as_array().iter().copied().collect()
             }
         };
+        // The first point is drawn here (the mask is called): a callback
+        // that raised is the error to report, not the region it "missed".
         let stream = self
             .inner
-            .iter_with(seed, mask, &fixed, Arc::clone(&failure))?;
+            .iter_with(seed, mask, &fixed, Arc::clone(&failure))
+            .map_err(|e| failure.take().unwrap_or(e))?;
         Ok(Points::new(stream, failure, self.d))
     }
 
