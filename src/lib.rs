@@ -192,7 +192,7 @@
 //! | box thinner than `r` on some axis (bounded or periodic) | valid points: a row, or a single point |
 //! | `r` far larger than the box (a radius in the wrong units: `r = 200` in a unit box) | one point, at once, in a few kilobytes: the search reach stops at the box (periodic: at one period), and a box whose diameter is below `r` ends after its first point |
 //! | box wider than 2⁴⁰ radii on some axis | [`Error::BoxTooWide`], whatever the cap or budget |
-//! | `r` small against the box (within 2⁴⁰ radii) | in 2-D and 3-D [`GridLayout::Auto`] takes the dense grid where the run's expected peak fits the budget: the bytes allocated up front plus the points the density model expects, with 5 % to spare, at their bytes a point (about 2.5 points' worth with `u32` cells, 0.5 in 3-D bricks); where the model has no answer (`k` outside `3 ..= 1000`) it assumes the box full at the packing bound. Otherwise (and from 4-D up) the sparse grid, which allocates nothing up front. A run over the whole box ([`PoissonDisk::iter`], [`PoissonDisk::generate`]) whose expected points need more than twice the budget even at 8 bytes a coordinate is refused at once with [`Error::RunTooLarge`] (`points --dim 3 --radius 1e-9` in milliseconds); a run that starts and then outgrows the budget ends with [`Error::MemoryBudgetExceeded`] (from [`Points::error`], or an [`Incomplete`] that keeps the points). A run in a region ([`PoissonDisk::iter_with`]) is never refused up front: a small region in a huge box runs. A point cap stops a run sooner, with no error |
+//! | `r` small against the box (within 2⁴⁰ radii) | in 2-D and 3-D [`GridLayout::Auto`] takes the dense grid where the run's expected peak fits the budget: the bytes allocated up front plus the points the density model expects, with 5 % to spare, at their bytes a point (about 2.5 points' worth with `u32` cells, 0.5 in 3-D bricks); where the model has no answer (`k` outside `3 ..= 1000`) it assumes the box full at the packing bound. Where the dense grid does not fit, a bounded box gets the paged grid ([`GridLayout::Paged`]: the dense cells, allocated a page at a time where points land, so memory follows the points, at about 0.8 of the dense grid's speed in 2-D); a periodic box, a 3-D box of at most 16 M cells of side `r`, and every box from 4-D up get the sparse grid, which allocates nothing up front. A run over the whole box ([`PoissonDisk::iter`], [`PoissonDisk::generate`]) whose expected points need more than twice the budget even at 8 bytes a coordinate is refused at once with [`Error::RunTooLarge`] (`points --dim 3 --radius 1e-9` in milliseconds); a run that starts and then outgrows the budget ends with [`Error::MemoryBudgetExceeded`] (from [`Points::error`], or an [`Incomplete`] that keeps the points). A run in a region ([`PoissonDisk::iter_with`]) is never refused up front: a small region in a huge box runs. A point cap stops a run sooner, with no error |
 //! | [`PoissonDiskBuilder::max_grid_bytes`] | bounds the peak heap of a run: what the grid allocates before its first point ([`PoissonDisk::grid_bytes`]: the dense cells and stencils) is checked in `build()`, which gives [`Error::GridTooLarge`] `{ needed, budget }` if it alone is over (`needed` saturated at `u64::MAX` for a grid no budget allows, e.g. a forced dense grid of 10¹⁸ cells); every later growth (points, hash table, active list) is checked before it is allocated, counting old and new block together. `0` refuses every grid. [`Points::heap_bytes`] tells what a run holds. With `u64::MAX` the budget no longer protects: a failed dense allocation falls back to the sparse grid, but an allocation the system grants is used |
 //! | count mode asking for 0 points (`about_points(domain, 0)`); a negative cap or count does not compile (both are `u64`) | [`Error::InvalidPointCount`] |
 //! | count mode asking for more points than radii down to `1e-150` give | [`Error::InvalidRadius`] |
@@ -218,13 +218,17 @@
 //! | `N` | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |
 //! |---|--:|--:|--:|--:|--:|--:|--:|--:|
 //! | dense, after its grid | 13 | 17 | 2 | 36 | 69 | – | – | – |
+//! | paged (bounded boxes), all of it | 19 | 46 | 116 | – | – | – | – | – |
 //! | sparse, cell array (small boxes) | 25 | 25 | 52 | 64 | 109 | 147 | 166 | 167 |
 //! | sparse, hash table (huge boxes) | 31 | 114 | 166 | 190 | 194 | 404 | 395 | 447 |
 //!
-//! So the default 1 GiB budget holds about 19 million points in 2-D
-//! (`points --dim 2 --radius 0.00018` makes 18 988 665 on the dense grid
-//! at a peak RSS of 771 MB; at `0.000175` the plan no longer fits and the
-//! sparse grid stops at the budget). For more, raise
+//! (Paged: 1-D at `r = 2e-6`, 2-D at `0.002`, 3-D at `0.02`; a box of a
+//! few pages a side, so partly used edge pages count.) So the default
+//! 1 GiB budget holds about 19 million points in 2-D on the dense grid
+//! (`points --dim 2 --radius 0.00018` makes 18 988 665 at a peak RSS of
+//! 771 MB) and about 20 million on pages (at `0.000175` the dense plan no
+//! longer fits; the paged grid makes 20 089 318 in 19 s at 629 MB, where
+//! the sparse grid stopped at 7.5 million after 80 s). For more, raise
 //! [`PoissonDiskBuilder::max_grid_bytes`] by about 60 bytes a point in 2-D.
 //!
 //! # Determinism
@@ -265,9 +269,10 @@
 //! for transparent huge pages (a paging hint). On x86-64 the sampling loops
 //! are compiled a second time for AVX2 and run that way where the processor
 //! has it, with the same points (run-time dispatch). Those are the crate's
-//! three `unsafe` blocks. From 4-D up (or when the dense grid, full, would
-//! exceed the memory budget) a sparse grid is used, whose memory grows with the
-//! number of points; its search walks the cells within reach by branch and
+//! three `unsafe` blocks. Where the dense grid would exceed the memory
+//! budget, a bounded box in 1-D to 3-D keeps its cells in pages allocated
+//! where the points land. From 4-D up (and on periodic boxes over budget)
+//! a sparse grid is used, whose memory grows with the number of points; its search walks the cells within reach by branch and
 //! bound, nearest first, where the dense grid's stencil would check 504
 //! cells in 4-D. `docs/performance.md` compares throughput with a textbook
 //! implementation and the published crates.

@@ -478,6 +478,7 @@ impl<const N: usize> PoissonDisk<N> {
     pub fn resolved_layout(&self) -> GridLayout {
         match self.plan {
             GridPlan::Dense(_) => GridLayout::Dense,
+            GridPlan::Paged(_) => GridLayout::Paged,
             GridPlan::Sparse(_) => GridLayout::Sparse,
         }
     }
@@ -505,6 +506,7 @@ impl<const N: usize> PoissonDisk<N> {
     pub fn grid_bytes(&self) -> u64 {
         match self.plan {
             GridPlan::Dense(d) => d.bytes,
+            GridPlan::Paged(p) => p.bytes,
             GridPlan::Sparse(s) => s.bytes,
         }
     }
@@ -609,6 +611,7 @@ impl<const N: usize> PoissonDisk<N> {
             let stored = match &mut it.grid {
                 Grid::Bricks(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Dense(g) => place(g, &mut it.active, *p, it.budget),
+                Grid::Paged(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Sparse(g) => place(g, &mut it.active, *p, it.budget),
             };
             match stored {
@@ -854,6 +857,10 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
                     #[inline(always)]
                     || state.grow(g),
                 ),
+                Grid::Paged(g) => dispatch(
+                    #[inline(always)]
+                    || state.grow(g),
+                ),
                 Grid::Sparse(g) => dispatch(
                     #[inline(always)]
                     || state.grow(g),
@@ -868,6 +875,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
             let stored = match &mut self.grid {
                 Grid::Bricks(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
+                Grid::Paged(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
             };
             match stored {
@@ -976,6 +984,7 @@ impl<const N: usize, R, G> Points<N, R, G> {
         let grid = match &self.grid {
             Grid::Bricks(g) => g.bytes(),
             Grid::Dense(g) => g.bytes(),
+            Grid::Paged(g) => g.bytes(),
             Grid::Sparse(g) => g.bytes(),
         };
         grid.saturating_add(vec_bytes(&self.active))
@@ -987,6 +996,7 @@ impl<const N: usize, R, G> Points<N, R, G> {
     pub fn layout(&self) -> GridLayout {
         match self.grid {
             Grid::Bricks(_) | Grid::Dense(_) => GridLayout::Dense,
+            Grid::Paged(_) => GridLayout::Paged,
             Grid::Sparse(_) => GridLayout::Sparse,
         }
     }
@@ -1265,7 +1275,7 @@ mod tests {
         // In a region (here the whole box), the run is never refused up
         // front: it grows until the budget.
         let mut it = uncapped.iter_with_seeded(3, Everywhere, &[]).unwrap();
-        assert_eq!(it.layout(), GridLayout::Sparse, "sparse");
+        assert_eq!(it.layout(), GridLayout::Paged, "paged");
         let mut made = 0u64;
         while it.next().is_some() {
             made += 1;
@@ -1376,7 +1386,7 @@ mod planning_tests {
     fn planned<const N: usize>(s: &PoissonDisk<N>) -> Option<u64> {
         match s.plan {
             GridPlan::Dense(d) => Some(d.peak(s.expected)),
-            GridPlan::Sparse(_) => None,
+            GridPlan::Paged(_) | GridPlan::Sparse(_) => None,
         }
     }
 

@@ -66,7 +66,12 @@ fn unit<const N: usize>(periodic: bool) -> Domain<N> {
 fn the_peak_heap_stays_within_the_budget() {
     fn check<const N: usize>(r: f64, budgets: &[u64], stops: &mut usize, complete: &mut usize) {
         for &budget in budgets {
-            for layout in [GridLayout::Auto, GridLayout::Dense, GridLayout::Sparse] {
+            for layout in [
+                GridLayout::Auto,
+                GridLayout::Dense,
+                GridLayout::Paged,
+                GridLayout::Sparse,
+            ] {
                 for periodic in [false, true] {
                     let Ok((n, error, peak)) =
                         run(unit::<N>(periodic), r, layout, budget, usize::MAX)

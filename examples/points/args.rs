@@ -101,6 +101,9 @@ pub(crate) struct Args {
     /// outgrows it stops with exit code 2
     #[arg(long, value_name = "B")]
     max_grid_bytes: Option<u64>,
+    /// The background grid (GridLayout) [default: auto]
+    #[arg(long, value_name = "KIND", value_enum, default_value_t)]
+    layout: LayoutArg,
     /// Generate on T threads (PoissonDisk::generate_parallel): slabs along
     /// the widest axis, a different set from the serial run's (same
     /// statistics), the same for every T; written once complete
@@ -167,6 +170,32 @@ pub(crate) struct Args {
     sampler: Option<SamplerArg>,
 }
 
+/// The background grid behind `--layout`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub(crate) enum LayoutArg {
+    /// Dense where it fits the budget, else paged (bounded 2-D and 3-D
+    /// boxes) or sparse
+    #[default]
+    Auto,
+    /// Bridson's dense grid
+    Dense,
+    /// Dense cells allocated in pages where the points land
+    Paged,
+    /// The sparse hash grid
+    Sparse,
+}
+
+impl From<LayoutArg> for bridson::GridLayout {
+    fn from(layout: LayoutArg) -> Self {
+        match layout {
+            LayoutArg::Auto => Self::Auto,
+            LayoutArg::Dense => Self::Dense,
+            LayoutArg::Paged => Self::Paged,
+            LayoutArg::Sparse => Self::Sparse,
+        }
+    }
+}
+
 /// The pixel sampler behind `--camera`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SamplerArg {
@@ -213,6 +242,8 @@ pub(crate) struct Config {
     pub(crate) max_points: Option<u64>,
     /// `--max-grid-bytes`: the run's memory budget.
     pub(crate) max_grid_bytes: Option<u64>,
+    /// `--layout`: the background grid.
+    pub(crate) layout: bridson::GridLayout,
     /// `--threads`: the parallel generator on this many threads.
     pub(crate) threads: Option<NonZeroUsize>,
     pub(crate) format: Format,
@@ -408,6 +439,7 @@ impl Args {
             seed: self.seed,
             max_points: self.max_points,
             max_grid_bytes: self.max_grid_bytes,
+            layout: self.layout.into(),
             threads: self.threads,
             format: self.format,
             out: self.out,
@@ -459,6 +491,7 @@ mod tests {
             seed: 7,
             max_points: None,
             max_grid_bytes: None,
+            layout: bridson::GridLayout::Auto,
             threads: None,
             format: Format::Csv,
             out: Some(PathBuf::from("pts.csv")),

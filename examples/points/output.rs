@@ -146,6 +146,7 @@ fn build<const N: usize>(config: &Config) -> Result<PoissonDisk<N>, String> {
         .attempts(config.attempts.unwrap_or(bridson::DEFAULT_ATTEMPTS))
         .max_points(config.max_points.unwrap_or(u64::MAX))
         .max_grid_bytes(config.max_grid_bytes.unwrap_or(DEFAULT_MAX_GRID_BYTES))
+        .layout(config.layout)
         .candidates(config.candidates)
         .build()
         .map_err(|e| e.to_string())

@@ -225,7 +225,8 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
         GridLayout::Dense,
         GridLayout::Sparse,
         GridLayout::Auto,
-    ][usize::from(b.u8() % 4)];
+        GridLayout::Paged,
+    ][usize::from(b.u8() % 5)];
     let budget = budget(b);
     let cap = max_points(b, limit);
     let seed = b.u64();
@@ -304,7 +305,7 @@ fn run_n<const N: usize>(b: &mut Bytes<'_>) {
 
     // The layout never changes the points.
     if compare_layouts {
-        for other in [GridLayout::Dense, GridLayout::Sparse] {
+        for other in [GridLayout::Dense, GridLayout::Paged, GridLayout::Sparse] {
             if other == small.resolved_layout() {
                 continue;
             }

@@ -452,7 +452,7 @@ const WIDE_SEED_REACH: isize = 3;
 /// grid whose rows are `row` apart (axis 0's stride is 1): what the next
 /// pick's prefetch asks for. Its centre row counts the centre cell, which
 /// the seed leaves out.
-fn wide_seed_rows(row: usize) -> impl Iterator<Item = [isize; 2]> {
+pub(crate) fn wide_seed_rows(row: usize) -> impl Iterator<Item = [isize; 2]> {
     let row = isize::try_from(row).unwrap_or(0);
     (-WIDE_SEED_REACH..=WIDE_SEED_REACH).map(move |dy| {
         let reach = if dy.abs() == WIDE_SEED_REACH {

@@ -30,7 +30,7 @@ type Cell<const N: usize> = SmallVec<[[f64; N]; 2]>;
 /// buckets, 7/8 of them usable from 8 buckets up (3 of 4, 7 of 8 below);
 /// one entry and one control byte a bucket, plus a group of control bytes
 /// and alignment.
-fn table_bytes(capacity: usize, entry: u64) -> u64 {
+pub(crate) fn table_bytes(capacity: usize, entry: u64) -> u64 {
     if capacity == 0 {
         return 0;
     }
