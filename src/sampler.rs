@@ -894,7 +894,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
 }
 
 /// The uniform tries for a run's first point in its region: `64·k`.
-fn first_point_tries(attempts: u32) -> u64 {
+pub(crate) fn first_point_tries(attempts: u32) -> u64 {
     64 * u64::from(attempts)
 }
 
