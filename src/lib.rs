@@ -323,6 +323,7 @@ mod prefetch;
 mod random;
 #[cfg(feature = "serde")]
 mod serde_array;
+mod single;
 mod vector;
 
 pub use crate::candidates::Candidates;
