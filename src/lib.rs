@@ -309,12 +309,13 @@ mod render;
 // Streaming.
 mod tiled;
 // Core: the sampler, where its candidates fall, its per-pick cache, its
-// parallel form (slabs).
+// parallel form (slabs), its f32 padding (`single`).
 mod candidates;
 mod conflict_cache;
 mod field;
 mod parallel;
 mod sampler;
+mod single;
 mod varying;
 // The background grid.
 mod grid;
@@ -330,7 +331,6 @@ mod prefetch;
 mod random;
 #[cfg(feature = "serde")]
 mod serde_array;
-mod single;
 mod vector;
 
 pub use crate::candidates::Candidates;

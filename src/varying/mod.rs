@@ -251,7 +251,7 @@ impl<const N: usize> PoissonDisk<N> {
     ///
     /// A mask closure needs its argument type written out,
     /// `|p: &[f64; 2]| …`: the compiler does not infer it through the
-    /// [`Region`](crate::Region) bound (error E0282).
+    /// [`Region`] bound (error E0282).
     ///
     /// # Errors
     /// As [`iter_varying`](Self::iter_varying), and:
