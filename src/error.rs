@@ -147,6 +147,18 @@ pub enum Error {
         /// The tries made (`64·k`).
         tries: u64,
     },
+    /// Occurs when `f32` points cannot keep the radius
+    /// ([`PoissonDisk::for_f32`](crate::PoissonDisk::for_f32),
+    /// [`PoissonDisk::f32_radius`](crate::PoissonDisk::f32_radius)): `r` is
+    /// within a few `f32` ulps of the box's largest coordinate magnitude
+    /// (the padding that rounding needs would be over a quarter of `r`), or
+    /// squares of distances across the box overflow `f32`. Grow the radius,
+    /// or move the box nearer the origin (coordinates relative to a corner).
+    F32TooCoarse {
+        /// The radius in `f32` ulps of the largest coordinate magnitude,
+        /// rounded down (saturating).
+        ulps: u64,
+    },
     /// Occurs when a sampler with a point cap
     /// ([`PoissonDiskBuilder::max_points`](crate::PoissonDiskBuilder::max_points)) is asked for a
     /// parallel run ([`PoissonDisk::generate_parallel`](crate::PoissonDisk::generate_parallel)):
@@ -268,6 +280,12 @@ impl fmt::Display for Error {
                 "no first point landed in the region in {tries} uniform tries over the box: \
                  the region is empty or too small a part of the box (pre-place a point in it, \
                  or sample a smaller box around it)"
+            ),
+            Self::F32TooCoarse { ulps } => write!(
+                f,
+                "f32 points cannot keep this radius: it spans only {ulps} f32 ulps of the box's \
+                 largest coordinate (or squared distances overflow f32); grow the radius or \
+                 move the box nearer the origin"
             ),
             Self::PointCapInParallel => f.write_str(
                 "a parallel run takes no point cap (a cap keeps a prefix of one run's stream)",

@@ -12,7 +12,10 @@
 //!   [`PoissonDisk::iter_with`] keeps new points inside a region (a mask)
 //!   and clear of pre-placed points, which also gives seamless chunks of
 //!   an endless world made chunk by chunk, and
-//!   [`PoissonDisk::iter_varying`] lets the radius vary with position;
+//!   [`PoissonDisk::iter_varying`] lets the radius vary with position
+//!   ([`PoissonDisk::iter_varying_with`]: in a region, around pre-placed
+//!   points); [`PoissonDisk::for_f32`] pads the radius so that the points
+//!   rounded to `f32` keep it in `f32` arithmetic;
 //!   [`PoissonDisk::generate_parallel`] makes a set on several threads,
 //!   slab by slab (a different set from one run's, with its statistics).
 //! - [`Tiled`] streams a 2-D set over a `W × H` raster pixel by pixel, in
@@ -161,7 +164,9 @@
 //!    order. On periodic axes the difference is `min(|Δ|, L - |Δ|)`. This
 //!    holds in every dimension: the neighbour search reach is derived from
 //!    `r`, the cell size and a bound on rounding, never a fixed ±2 cells;
-//!    points are stored as `f64`, never rounded to `f32`.
+//!    points are stored as `f64`, never rounded to `f32`. Rounded to
+//!    `f32` (`as f32`), points can come closer than `r`; a sampler from
+//!    [`PoissonDisk::for_f32`] keeps `r` in `f32` arithmetic too.
 //! 2. Every point lies in the half-open box: `lo <= x < hi` on every axis.
 //! 3. Nothing panics, aborts or allocates without bound on any input: bad
 //!    parameters are an [`Error`] from the constructor, and the heap a run
@@ -203,7 +208,9 @@
 //! | point cap `0` | an empty stream |
 //! | point cap `c` | the first `c` points of the uncapped stream, a blob around the first point; also bounds the sparse grid's memory |
 //! | point cap `u64::MAX` | no cap |
-//! | a region ([`PoissonDisk::iter_with`]) that none of `64·k` uniform tries over the box hits, with no pre-placed point | [`Error::RegionMissed`] from `iter_with`, before any point |
+//! | a region ([`PoissonDisk::iter_with`], [`PoissonDisk::iter_varying_with`]) that none of `64·k` uniform tries over the box hits, with no pre-placed point | [`Error::RegionMissed`] `{ tries }` (`tries = 64·k`) from `iter_with` or `iter_varying_with`, before any point |
+//! | a mask closure without its argument type, `\|p\| p[0] < 5.0` | does not compile (E0282): write `\|p: &[f64; 2]\| …` ([`Region`]) |
+//! | [`PoissonDisk::for_f32`] with `r` within a few `f32` ulps of the box's largest coordinate (padding over `r/4`) | [`Error::F32TooCoarse`] `{ ulps }`; `r` outside `2⁻⁴⁰ ..= 2⁶⁰`: [`Error::InvalidRadius`] |
 //! | any point, any input | `lo <= x < hi`: a candidate that rounds onto `hi` is dropped, never clamped |
 //!
 //! ## Memory a point takes
@@ -307,12 +314,13 @@ mod render;
 // Streaming.
 mod tiled;
 // Core: the sampler, where its candidates fall, its per-pick cache, its
-// parallel form (slabs).
+// parallel form (slabs), its f32 padding (`single`).
 mod candidates;
 mod conflict_cache;
 mod field;
 mod parallel;
 mod sampler;
+mod single;
 mod varying;
 // The background grid.
 mod grid;

@@ -30,9 +30,33 @@ pub const MAX_ATTEMPTS: u32 = 1 << 16;
 pub(crate) const COUNT_ATTEMPTS: core::ops::RangeInclusive<u32> = 3..=1000;
 
 /// Where new points may go: the acceptance region of a run with
-/// [`PoissonDisk::iter_with`]. Implemented for [`Everywhere`] (a plain run)
-/// and for every closure `Fn(&[f64; N]) -> bool` (a mask: `true` where a
-/// point may go).
+/// [`PoissonDisk::iter_with`] or [`PoissonDisk::iter_varying_with`].
+/// Implemented for [`Everywhere`] (a plain run) and for every closure
+/// `Fn(&[f64; N]) -> bool` (a mask: `true` where a point may go).
+///
+/// # A mask closure's argument type
+/// Write it out: `|p: &[f64; 2]| p[0] < 5.0`. The compiler infers a
+/// closure's argument types only from an `Fn` bound on the parameter, and
+/// this one is a `Region` bound (so that [`Everywhere`], which is not a
+/// closure, fits too); without the type it stops with E0282, "type
+/// annotations needed", pointing at `p`. A named function or a closure
+/// stored in a typed `let` works as well.
+///
+/// ```
+/// use bridson::{Domain, PoissonDisk2};
+/// let sampler = PoissonDisk2::new(Domain::from_extent([10.0, 10.0])?, 0.5)?;
+/// let points: Vec<[f64; 2]> = sampler.iter_with_seeded(1, |p: &[f64; 2]| p[0] < 5.0, &[])?.collect();
+/// assert!(points.iter().all(|p| p[0] < 5.0));
+/// # Ok::<(), bridson::Error>(())
+/// ```
+///
+/// Without the type (this example must not compile):
+/// ```compile_fail,E0282
+/// use bridson::{Domain, PoissonDisk2};
+/// let sampler = PoissonDisk2::new(Domain::from_extent([10.0, 10.0])?, 0.5)?;
+/// let points: Vec<[f64; 2]> = sampler.iter_with_seeded(1, |p| p[0] < 5.0, &[])?.collect();
+/// # Ok::<(), bridson::Error>(())
+/// ```
 pub trait Region<const N: usize> {
     /// Whether a new point may lie at `p` (a point of the domain).
     fn admits(&self, p: &[f64; N]) -> bool;
@@ -571,6 +595,9 @@ impl<const N: usize> PoissonDisk<N> {
     /// `2r` hops of where it started: parts of a mask farther apart (islands)
     /// need a pre-placed point, or a run of their own. `region(p) == true`
     /// means a new point may lie at `p`; [`Everywhere`] is the whole box.
+    /// A mask closure needs its argument type written out,
+    /// `|p: &[f64; 2]| …`, or the compiler stops with E0282 ("type
+    /// annotations needed"): see [`Region`].
     ///
     /// # Errors
     /// [`Error::RegionMissed`] if there are no pre-placed points and no
@@ -902,7 +929,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
 }
 
 /// The uniform tries for a run's first point in its region: `64·k`.
-fn first_point_tries(attempts: u32) -> u64 {
+pub(crate) fn first_point_tries(attempts: u32) -> u64 {
     64 * u64::from(attempts)
 }
 

@@ -20,6 +20,9 @@ mod camera;
 #[path = "../fuzz/common/nets.rs"]
 mod nets;
 
+#[path = "../fuzz/common/parts.rs"]
+mod parts;
+
 #[cfg(feature = "serde")]
 #[path = "../fuzz/common/config_json.rs"]
 mod config_json;
@@ -83,6 +86,11 @@ fn camera_corpus() {
 #[test]
 fn nets_corpus() {
     replay("nets", nets::run);
+}
+
+#[test]
+fn parts_corpus() {
+    replay("parts", parts::run);
 }
 
 #[cfg(feature = "serde")]

@@ -33,6 +33,8 @@ Output formats:
   json: {\"dim\":..,\"radius\":..,\"lo\":[..],\"hi\":[..],\"points\":[[..],..]}
   none: write nothing (--out is ignored); the summary time is then pure
         generation
+With --f32 the points are f32 (binary: 4 bytes a value); the JSON radius is
+the one they keep.
 
 Flags also accept the form --flag=value. Numbers are printed in the shortest
 form that parses back to the identical f64.
@@ -126,6 +128,14 @@ pub(crate) struct Args {
     /// With --field: the chunk side in the box's units [default: 64 R]
     #[arg(long, value_name = "S", requires = "field")]
     chunk: Option<f64>,
+    /// Write f32 points that keep the radius in f32 arithmetic: the run
+    /// samples at a radius padded for f32 rounding
+    /// (PoissonDisk::for_f32; fewer points), and a radius within a few
+    /// f32 ulps of the box's largest coordinate is refused (exit 2); every
+    /// batch run (plain, --count, --threads, --radius-range), not
+    /// --pixels or --field; binary output is then 4-byte floats
+    #[arg(long, conflicts_with_all = ["pixels", "field"])]
+    f32: bool,
     /// What to write (see "Output formats" below)
     #[arg(long, value_name = "FMT", value_enum, default_value_t = Format::Csv)]
     format: Format,
@@ -252,6 +262,8 @@ pub(crate) struct Config {
     pub(crate) raster: Option<Raster>,
     /// `--field`: the field sampler.
     pub(crate) field: Option<FieldMode>,
+    /// `--f32`: f32 points that keep the radius in f32.
+    pub(crate) f32: bool,
 }
 
 /// The field mode's settings (`--field`).
@@ -445,6 +457,7 @@ impl Args {
             out: self.out,
             raster,
             field,
+            f32: self.f32,
         })
     }
 }
@@ -497,6 +510,7 @@ mod tests {
             out: Some(PathBuf::from("pts.csv")),
             raster: None,
             field: None,
+            f32: false,
         };
         assert_eq!(c, expected, "example command");
     }
@@ -644,6 +658,24 @@ mod tests {
             "--dim 2 --radius-range 0.01,0.02,0.03",
             "--dim 2 --radius-range 0.01,0.02 --radius 0.1",
             "--dim 2 --radius-range 0.01,0.02 --count 100",
+        ] {
+            assert_eq!(error(bad).exit_code(), 2, "{bad}: exit code");
+        }
+    }
+
+    #[test]
+    fn f32_goes_with_every_batch_run_only() {
+        for line in [
+            "--dim 2 --radius 0.1 --f32",
+            "--dim 3 --count 100 --f32",
+            "--dim 2 --radius 0.1 --threads 2 --f32",
+            "--dim 2 --radius-range 0.01,0.04 --f32",
+        ] {
+            assert!(config(line).f32, "{line}");
+        }
+        for bad in [
+            "--pixels 4x4 --radius 1 --f32",
+            "--dim 2 --radius 0.1 --field --f32",
         ] {
             assert_eq!(error(bad).exit_code(), 2, "{bad}: exit code");
         }

@@ -40,16 +40,30 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
     if let Some(range) = config.radius_range {
         return run_varying::<N>(config, range);
     }
-    let sampler = build::<N>(config).map_err(Failure::Usage)?;
+    let kept = build::<N>(config).map_err(Failure::Usage)?;
+    // --f32: sample at the radius padded for f32 rounding; `kept` is the
+    // radius the f32 points keep.
+    let sampler = if config.f32 {
+        kept.for_f32().map_err(|e| Failure::Usage(e.to_string()))?
+    } else {
+        kept
+    };
     let run = (config.seed, config.threads);
+    let header = (kept.radius(), config.f32);
     let (count, elapsed, layout, stopped) = match (config.format, &config.out) {
-        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, run),
+        (Format::None, _) => write_points(io::sink(), Format::None, &sampler, run, header),
         (format, Some(path)) => {
             let file = File::create(path)
                 .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
-            write_points(BufWriter::new(file), format, &sampler, run)
+            write_points(BufWriter::new(file), format, &sampler, run, header)
         }
-        (format, None) => write_points(BufWriter::new(io::stdout().lock()), format, &sampler, run),
+        (format, None) => write_points(
+            BufWriter::new(io::stdout().lock()),
+            format,
+            &sampler,
+            run,
+            header,
+        ),
     }
     .map_err(|e| {
         let target = config
@@ -58,7 +72,7 @@ fn run<const N: usize>(config: &Config) -> Result<(), Failure> {
             .map_or_else(|| "stdout".to_owned(), |p| format!("'{}'", p.display()));
         Failure::Io(format!("writing to {target}: {e}"))
     })?;
-    report(&summary(&sampler, count, elapsed, layout));
+    report(&summary(&kept, &sampler, count, elapsed, layout));
     // The points written are valid, but the set is incomplete: say why.
     stopped.map_or(Ok(()), |e| Err(Failure::Usage(e.to_string())))
 }
@@ -70,35 +84,59 @@ fn run_varying<const N: usize>(config: &Config, (r0, r1): (f64, f64)) -> Result<
         radius: r0.max(r1),
         ..config.clone()
     };
-    let sampler = build::<N>(&config_max).map_err(Failure::Usage)?;
-    let (lo, extent) = (sampler.domain().lo()[0], sampler.domain().extent()[0]);
+    let kept = build::<N>(&config_max).map_err(Failure::Usage)?;
+    let (lo, extent) = (kept.domain().lo()[0], kept.domain().extent()[0]);
     // A multiplication per candidate, not a division.
     let slope = (r1 - r0) / extent;
     let field = move |p: &[f64; N]| r0 + slope * (p[0] - lo);
+    // --f32: every radius padded for f32 rounding (linear in r, so the
+    // two ends checked cover the values between).
+    let pad = move |r: f64| {
+        if config.f32 {
+            kept.f32_radius(r)
+        } else {
+            Ok(r)
+        }
+    };
+    let usage = |e: Error| Failure::Usage(e.to_string());
+    let (p0, p1) = (pad(r0).map_err(usage)?, pad(r1).map_err(usage)?);
+    let sampler = build::<N>(&Config {
+        radius: p0.max(p1),
+        ..config.clone()
+    })
+    .map_err(Failure::Usage)?;
+    let padded = move |p: &[f64; N]| pad(field(p)).unwrap_or(f64::NAN);
     let mut points = sampler
-        .iter_varying_seeded(config.seed, r0.min(r1), field)
-        .map_err(|e| Failure::Usage(e.to_string()))?;
+        .iter_varying_seeded(config.seed, p0.min(p1), padded)
+        .map_err(usage)?;
     let domain = sampler.domain();
-    let header = (sampler.radius(), domain.lo(), domain.hi());
+    let header = (kept.radius(), domain.lo(), domain.hi());
     let start = Instant::now();
+    let f32 = config.f32;
     let written = match (config.format, &config.out) {
-        (Format::None, _) => write_stream(io::sink(), Format::None, header, points.by_ref()),
+        (Format::None, _) => write_either(io::sink(), Format::None, header, points.by_ref(), f32),
         (format, Some(path)) => {
             let file = File::create(path)
                 .map_err(|e| Failure::Io(format!("cannot create '{}': {e}", path.display())))?;
-            write_stream(BufWriter::new(file), format, header, points.by_ref())
+            write_either(BufWriter::new(file), format, header, points.by_ref(), f32)
         }
-        (format, None) => write_stream(
+        (format, None) => write_either(
             BufWriter::new(io::stdout().lock()),
             format,
             header,
             points.by_ref(),
+            f32,
         ),
     };
     let count = written.map_err(|e| Failure::Io(format!("writing the points: {e}")))?;
     let seconds = start.elapsed().as_secs_f64();
+    let f32_note = if f32 {
+        format!(", f32 (sampled at {p0} to {p1})")
+    } else {
+        String::new()
+    };
     report(&format!(
-        "points: {count} in {seconds:.3} s, radius {r0} to {r1} along axis 0"
+        "points: {count} in {seconds:.3} s, radius {r0} to {r1} along axis 0{f32_note}"
     ));
     points
         .error()
@@ -162,20 +200,25 @@ fn array<const N: usize, T: Copy>(values: &[T], flag: &str) -> Result<[T; N], St
 /// (`generate_parallel`), then writes them. Returns the count, the time from
 /// building the grid to the flush, the layout built (planned, in parallel),
 /// and why the run stopped early if it did (the budget).
+///
+/// `(radius, f32)`: the radius the JSON header states (with `--f32`, the
+/// one the points keep, not the padded one sampled at), and whether to
+/// write the points as `f32`.
 fn write_points<const N: usize, W: Write>(
     out: W,
     format: Format,
     sampler: &PoissonDisk<N>,
     (seed, threads): (u64, Option<NonZeroUsize>),
+    (radius, f32): (f64, bool),
 ) -> io::Result<(u64, Duration, GridLayout, Option<Error>)> {
     let start = Instant::now();
     let domain = sampler.domain();
-    let header = (sampler.radius(), domain.lo(), domain.hi());
+    let header = (radius, domain.lo(), domain.hi());
     if let Some(threads) = threads {
         let layout = sampler.resolved_layout();
         return match sampler.generate_parallel_seeded(seed, threads) {
             Ok(points) => {
-                let count = write_stream(out, format, header, points.into_iter())?;
+                let count = write_either(out, format, header, points.into_iter(), f32)?;
                 Ok((count, start.elapsed(), layout, None))
             }
             Err(e) => Ok((0, start.elapsed(), layout, Some(e.error()))),
@@ -183,17 +226,57 @@ fn write_points<const N: usize, W: Write>(
     }
     let mut points = sampler.iter_seeded(seed);
     let layout = points.layout();
-    let count = write_stream(out, format, header, points.by_ref())?;
+    let count = write_either(out, format, header, points.by_ref(), f32)?;
     Ok((count, start.elapsed(), layout, points.error()))
+}
+
+/// [`write_stream`] of the points, or of the points rounded to `f32`
+/// (`as f32`: to nearest) if `f32`.
+fn write_either<const N: usize, W: Write>(
+    out: W,
+    format: Format,
+    header: (f64, [f64; N], [f64; N]),
+    points: impl Iterator<Item = [f64; N]>,
+    f32: bool,
+) -> io::Result<u64> {
+    if f32 {
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "--f32: rounding is the point"
+        )]
+        let single = points.map(|p| p.map(|x| x as f32));
+        write_stream(out, format, header, single)
+    } else {
+        write_stream(out, format, header, points)
+    }
+}
+
+/// A coordinate as written: `f64`, or `f32` with `--f32`. Both print in
+/// the shortest form that parses back to the same value (`{}`).
+pub(crate) trait Coord: Copy + std::fmt::Display {
+    /// The raw little-endian bytes (`--format binary`).
+    fn write_le<W: Write + ?Sized>(self, out: &mut W) -> io::Result<()>;
+}
+
+impl Coord for f64 {
+    fn write_le<W: Write + ?Sized>(self, out: &mut W) -> io::Result<()> {
+        out.write_all(&self.to_le_bytes())
+    }
+}
+
+impl Coord for f32 {
+    fn write_le<W: Write + ?Sized>(self, out: &mut W) -> io::Result<()> {
+        out.write_all(&self.to_le_bytes())
+    }
 }
 
 /// Writes `points` as they come in `format`, with the JSON header values
 /// `(radius, lo, hi)`; returns the count.
-fn write_stream<const N: usize, W: Write>(
+fn write_stream<const N: usize, W: Write, T: Coord>(
     mut out: W,
     format: Format,
     (radius, lo, hi): (f64, [f64; N], [f64; N]),
-    points: impl Iterator<Item = [f64; N]>,
+    points: impl Iterator<Item = [T; N]>,
 ) -> io::Result<u64> {
     let mut count: u64 = 0;
     match format {
@@ -219,7 +302,7 @@ fn write_stream<const N: usize, W: Write>(
         Format::Binary => {
             for p in points {
                 for x in p {
-                    out.write_all(&x.to_le_bytes())?;
+                    x.write_le(&mut out)?;
                 }
                 count += 1;
             }
@@ -306,7 +389,10 @@ fn run_raster(config: &Config, raster: Raster) -> Result<(), Failure> {
 
 /// Comma-separated values with `{}` (shortest round-trip form, never an
 /// exponent; every value here is finite, so also valid JSON).
-pub(crate) fn write_values<W: Write + ?Sized>(out: &mut W, values: &[f64]) -> io::Result<()> {
+pub(crate) fn write_values<W: Write + ?Sized, T: Coord>(
+    out: &mut W,
+    values: &[T],
+) -> io::Result<()> {
     for (i, x) in values.iter().enumerate() {
         if i > 0 {
             out.write_all(b",")?;
@@ -317,7 +403,11 @@ pub(crate) fn write_values<W: Write + ?Sized>(out: &mut W, values: &[f64]) -> io
 }
 
 /// `points: 1234567 in 0.812 s (1.52 M/s), rho 0.7312, grid Dense`.
+///
+/// ρ is at `kept`'s radius: with `--f32` the one the points keep, whose
+/// padded copy `sampler` ran (the summary then names its radius).
 fn summary<const N: usize>(
+    kept: &PoissonDisk<N>,
     sampler: &PoissonDisk<N>,
     count: u64,
     elapsed: Duration,
@@ -339,13 +429,20 @@ fn summary<const N: usize>(
     };
     let rho = usize::try_from(count)
         .ok()
-        .and_then(|n| bridson::relative_radius::<N>(sampler.radius(), n, sampler.domain().volume()))
+        .and_then(|n| bridson::relative_radius::<N>(kept.radius(), n, kept.domain().volume()))
         .map_or_else(|| "n/a".to_owned(), |rho| format!("{rho:.4}"));
     // Count mode: the radius was derived, so say which.
-    let derived = sampler
+    let derived = kept
         .requested_count()
-        .map_or_else(String::new, |_| format!(", radius {}", sampler.radius()));
-    format!("points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}{derived}")
+        .map_or_else(String::new, |_| format!(", radius {}", kept.radius()));
+    let f32_note = if sampler.radius() == kept.radius() {
+        String::new()
+    } else {
+        format!(", f32 (sampled at radius {})", sampler.radius())
+    };
+    format!(
+        "points: {count} in {seconds:.3} s ({rate}), rho {rho}, grid {layout:?}{derived}{f32_note}"
+    )
 }
 
 #[cfg(test)]
@@ -371,6 +468,9 @@ mod tests {
             // Outgrows its budget: the points written are valid, but the
             // run is an error (exit code 2).
             "--dim 3 --radius 1e-9 --max-grid-bytes 100000 --format none",
+            // f32 cannot hold a radius of 4 ulps at 10⁷ (exit code 2).
+            "--dim 2 --radius 4 --lo 1e7,0 --extent 400,400 --f32 --format none",
+            "--dim 2 --radius-range 4,8 --lo 1e7,0 --extent 400,400 --f32 --format none",
         ];
         assert_usage_failures(&lines, |line| dispatch(&config(line)));
     }
@@ -420,7 +520,13 @@ mod tests {
         let c = config(line);
         let sampler = build::<N>(&c).unwrap();
         let mut bytes = Vec::new();
-        write_points(&mut bytes, c.format, &sampler, (c.seed, c.threads)).unwrap();
+        let sampler = if c.f32 {
+            sampler.for_f32().unwrap()
+        } else {
+            sampler
+        };
+        let header = (build::<N>(&c).unwrap().radius(), c.f32);
+        write_points(&mut bytes, c.format, &sampler, (c.seed, c.threads), header).unwrap();
         String::from_utf8(bytes).unwrap()
     }
 
@@ -463,6 +569,92 @@ mod tests {
             })
             .collect();
         assert_eq!(got, expected, "{line}: the parallel set, as on one thread");
+    }
+
+    /// The count of f32 points in a CSV, or the first pair the naive
+    /// oracle in f32 (squared distance against `r·r`, and its root against
+    /// `r`) finds too close.
+    fn f32_points_keep<const N: usize>(
+        text: &str,
+        r: impl Fn(&[f32; N]) -> f64,
+    ) -> Result<usize, String> {
+        let points: Vec<[f32; N]> = text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f32> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                core::array::from_fn(|i| v[i])
+            })
+            .collect();
+        for (i, a) in points.iter().enumerate() {
+            for b in &points[..i] {
+                #[expect(clippy::cast_possible_truncation, reason = "the f32 radius")]
+                let r = r(a).max(r(b)) as f32;
+                let d2 = (0..N).fold(0.0f32, |s, k| s + (a[k] - b[k]) * (a[k] - b[k]));
+                if d2 < r * r || d2.sqrt() < r {
+                    return Err(format!("{a:?} {b:?}: {} < {r}", d2.sqrt()));
+                }
+            }
+        }
+        Ok(points.len())
+    }
+
+    #[test]
+    fn f32_writes_points_that_keep_r_in_f32() {
+        // r = 12 f32 ulps at 10⁶: rounding to f32 costs up to 1/6 of r.
+        let base = "--dim 2 --radius 0.75 --lo 1e6,1e6 --extent 30,30 --seed 2";
+        let plain = output::<2>(base);
+        assert!(
+            f32_points_keep::<2>(&plain, |_| 0.75).is_err(),
+            "the f64 points, read as f32, come closer than r"
+        );
+        let text = output::<2>(&format!("{base} --f32"));
+        let count = f32_points_keep::<2>(&text, |_| 0.75).unwrap();
+        assert!(count > 500, "{count} points");
+        assert!(count < plain.lines().count() - 1, "padded: fewer points");
+        let threads = output::<2>(&format!("{base} --f32 --threads 2"));
+        let count = f32_points_keep::<2>(&threads, |_| 0.75).unwrap();
+        assert!(count > 500, "threads: {count} points");
+        let counted = "--dim 3 --count 2000 --lo 1e6,0,0 --extent 10,10,10 --f32 --seed 1";
+        let r = build::<3>(&config(counted)).unwrap().radius();
+        assert!(f32_points_keep::<3>(&output::<3>(counted), |_| r).unwrap() > 1000);
+        let json = output::<2>(&format!("{base} --f32 --format json"));
+        assert!(
+            json.contains("\"radius\":0.75,"),
+            "the radius kept: {json:.80}"
+        );
+        let mut binary = Vec::new();
+        let c = config(&format!("{base} --f32 --format binary --max-points 3"));
+        let sampler = build::<2>(&c).unwrap().for_f32().unwrap();
+        write_points(
+            &mut binary,
+            c.format,
+            &sampler,
+            (c.seed, None),
+            (0.75, true),
+        )
+        .unwrap();
+        assert_eq!(binary.len(), 3 * 2 * 4, "4 bytes a value");
+    }
+
+    #[test]
+    fn f32_with_a_radius_range_keeps_max_r_in_f32() {
+        let path = std::env::temp_dir().join(format!("points-f32-{}.csv", std::process::id()));
+        let line = format!(
+            "--dim 2 --radius-range 0.5,1.5 --lo 1e6,0 --extent 40,40 --f32 --seed 3 --out {}",
+            path.display()
+        );
+        dispatch(&config(&line)).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        // The guarantee is at the field's value at the f64 point, which
+        // lies within half an ulp (1/32 at 10⁶) of the f32 one: the field
+        // (slope 1/40) there is at least its value here minus 1/1280.
+        let count = f32_points_keep::<2>(&text, |p| {
+            0.5 + (f64::from(p[0]) - 1e6) / 40.0 - 1.0 / 1280.0
+        })
+        .unwrap();
+        assert!(count > 500, "{count} points");
     }
 
     #[test]

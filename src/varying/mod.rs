@@ -30,8 +30,10 @@ use crate::cpu::dispatch;
 use crate::domain::Domain;
 use crate::error::Error;
 use crate::random::{DefaultRng, below, seeded_rng, unit};
-use crate::sampler::{PoissonDisk, check_radius_and_attempts};
-use crate::vector::{add, periodic_distance_squared, scale, zip_map};
+use crate::sampler::{
+    Everywhere, PoissonDisk, Region, check_radius_and_attempts, first_point_tries,
+};
+use crate::vector::{add, all_finite, periodic_distance_squared, scale, zip_map};
 use coarse::Coarse;
 use core::iter::FusedIterator;
 use levels::Levels;
@@ -112,11 +114,14 @@ enum Filed {
     Stop,
 }
 
-/// The stream of a [`PoissonDisk::iter_varying`] run.
+/// The stream of a [`PoissonDisk::iter_varying`] run, or of a
+/// [`PoissonDisk::iter_varying_with`] run in region `G` ([`Everywhere`]
+/// unless the run came from `iter_varying_with`).
 #[derive(Debug)]
-pub struct VaryingPoints<const N: usize, F, R = DefaultRng> {
+pub struct VaryingPoints<const N: usize, F, R = DefaultRng, G = Everywhere> {
     rng: R,
     field: F,
+    region: G,
     domain: Domain<N>,
     periods: [f64; N],
     r_min: f64,
@@ -138,6 +143,10 @@ pub struct VaryingPoints<const N: usize, F, R = DefaultRng> {
     remaining: u64,
     budget: u64,
     started: bool,
+    /// A first point already drawn in the region (by
+    /// [`PoissonDisk::iter_varying_with`], which reports a region it cannot
+    /// hit), to be stored on the first step.
+    first_found: Option<[f64; N]>,
     error: Option<Error>,
 }
 
@@ -195,7 +204,7 @@ impl<const N: usize> PoissonDisk<N> {
         r_min: f64,
         field: F,
     ) -> Result<VaryingPoints<N, F, R>, Error> {
-        self.varying(rng, r_min, field, true)
+        self.varying(rng, r_min, field, Everywhere, true)
     }
 
     /// As [`iter_varying`](Self::iter_varying), drawing from [`DefaultRng`]
@@ -213,15 +222,116 @@ impl<const N: usize> PoissonDisk<N> {
         self.iter_varying(seeded_rng(seed), r_min, field)
     }
 
-    /// [`Self::iter_varying`], on the lists if `levels` is false (tests
-    /// compare the two).
-    fn varying<R: Rng, F: Fn(&[f64; N]) -> f64>(
+    /// As [`iter_varying`](Self::iter_varying), with every new point
+    /// inside `region` and clear of the pre-placed points `fixed`, as
+    /// [`iter_with`](Self::iter_with) does for a fixed radius: a forest
+    /// whose spacing follows a function, kept out of a lake, around trees
+    /// already planted.
+    ///
+    /// A pre-placed point `q` carries the radius the field gives it,
+    /// `r(q)` (clamped as any point's), so the guarantee, no two points `p`,
+    /// `q` closer than `max(r(p), r(q))`, holds for the union of `fixed`
+    /// and the points yielded. The pre-placed points are not yielded; they
+    /// count against the memory budget but not against the point cap.
+    /// Growth starts from the pre-placed points (candidates are thrown
+    /// around them as around any point), or, if there are none, from a
+    /// uniform point of the region, drawn here: up to `64·k` uniform tries
+    /// over the box, and [`Error::RegionMissed`] if none lands in the
+    /// region, as `iter_with`. It reaches every part of the region within
+    /// `2·r_max` hops of where it started: islands of a mask need a
+    /// pre-placed point each. With [`Everywhere`] and no pre-placed point
+    /// it makes the points of [`iter_varying`](Self::iter_varying) for the
+    /// same generator.
+    ///
+    /// A method of its own, not two more parameters on `iter_varying`: a
+    /// plain run keeps its short call and its type
+    /// (`VaryingPoints<N, F, R>`, region [`Everywhere`]), and the pair
+    /// mirrors `iter` / `iter_with` (the naming rule's `name(rng, …)`,
+    /// `name_seeded(seed, …)`).
+    ///
+    /// A mask closure needs its argument type written out,
+    /// `|p: &[f64; 2]| …`: the compiler does not infer it through the
+    /// [`Region`] bound (error E0282).
+    ///
+    /// # Errors
+    /// As [`iter_varying`](Self::iter_varying), and:
+    /// [`Error::InvalidFixedPoint`] naming the first pre-placed point that
+    /// is not finite, lies outside the domain, or lies closer than
+    /// `max(r(p), r(q))` to an earlier one `p`;
+    /// [`Error::MemoryBudgetExceeded`] (with `points: 0`) if the pre-placed
+    /// points alone outgrow the budget; [`Error::RegionMissed`] if there
+    /// are no pre-placed points and no first point lands in the region.
+    ///
+    /// # Example: trees thinning out eastward, kept out of a lake
+    /// ```
+    /// use bridson::{Domain, PoissonDisk2};
+    /// let sampler = PoissonDisk2::new(Domain::from_extent([1.0, 1.0])?, 0.08)?;
+    /// let field = |p: &[f64; 2]| 0.02 + 0.06 * p[0];
+    /// let dry = |p: &[f64; 2]| (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) > 0.04;
+    /// let planted = [[0.1, 0.1], [0.9, 0.9]];
+    /// let new: Vec<[f64; 2]> =
+    ///     sampler.iter_varying_with_seeded(3, 0.02, field, dry, &planted)?.collect();
+    /// assert!(new.iter().all(|p| dry(p)));
+    /// let all: Vec<[f64; 2]> = planted.iter().chain(&new).copied().collect();
+    /// for (i, p) in all.iter().enumerate() {
+    ///     for q in &all[..i] {
+    ///         let d2 = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    ///         let r = field(p).max(field(q));
+    ///         assert!(d2 >= r * r);
+    ///     }
+    /// }
+    /// # Ok::<(), bridson::Error>(())
+    /// ```
+    pub fn iter_varying_with<R: Rng, F: Fn(&[f64; N]) -> f64, G: Region<N>>(
         &self,
         rng: R,
         r_min: f64,
         field: F,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<VaryingPoints<N, F, R, G>, Error> {
+        let mut it = self.varying(rng, r_min, field, region, true)?;
+        for (index, p) in fixed.iter().enumerate() {
+            it.place_fixed(*p)
+                .map_err(|e| e.unwrap_or(Error::InvalidFixedPoint { index }))?;
+        }
+        if fixed.is_empty() {
+            let tries = first_point_tries(it.attempts);
+            it.first_found = Some(it.first_in_region().ok_or(Error::RegionMissed { tries })?);
+        } else {
+            // Growth starts from the pre-placed points.
+            it.started = true;
+        }
+        Ok(it)
+    }
+
+    /// As [`iter_varying_with`](Self::iter_varying_with), drawing from
+    /// [`DefaultRng`] seeded with `seed`: the same seed, field, region and
+    /// pre-placed points give the same points on every run and platform.
+    ///
+    /// # Errors
+    /// As [`iter_varying_with`](Self::iter_varying_with).
+    pub fn iter_varying_with_seeded<F: Fn(&[f64; N]) -> f64, G: Region<N>>(
+        &self,
+        seed: u64,
+        r_min: f64,
+        field: F,
+        region: G,
+        fixed: &[[f64; N]],
+    ) -> Result<VaryingPoints<N, F, DefaultRng, G>, Error> {
+        self.iter_varying_with(seeded_rng(seed), r_min, field, region, fixed)
+    }
+
+    /// [`Self::iter_varying`], on the lists if `levels` is false (tests
+    /// compare the two).
+    fn varying<R: Rng, F: Fn(&[f64; N]) -> f64, G: Region<N>>(
+        &self,
+        rng: R,
+        r_min: f64,
+        field: F,
+        region: G,
         levels: bool,
-    ) -> Result<VaryingPoints<N, F, R>, Error> {
+    ) -> Result<VaryingPoints<N, F, R, G>, Error> {
         let r_max = self.radius();
         check_radius_and_attempts(r_min, self.attempts())?;
         if r_min > r_max {
@@ -255,6 +365,7 @@ impl<const N: usize> PoissonDisk<N> {
         Ok(VaryingPoints {
             rng,
             field,
+            region,
             domain,
             periods: zip_map(&domain.extent(), &domain.periodic(), |l, p| {
                 if p { l } else { 0.0 }
@@ -272,12 +383,13 @@ impl<const N: usize> PoissonDisk<N> {
             remaining: self.max_points().unwrap_or(u64::MAX),
             budget: budget.saturating_sub(needed),
             started: false,
+            first_found: None,
             error: None,
         })
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng, G: Region<N>> VaryingPoints<N, F, R, G> {
     /// Why the stream ended early, if it did: as [`Points::error`](crate::Points::error).
     pub fn error(&self) -> Option<Error> {
         self.error
@@ -292,6 +404,48 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
         } else {
             r.clamp(self.r_min, self.r_max)
         }
+    }
+
+    /// Stores pre-placed point `p` at its radius `r(p)`: `Err(None)` if it
+    /// is not finite, lies outside the box or closer than `max(r(p), r(q))`
+    /// to a stored point `q`; `Err(Some(MemoryBudgetExceeded))` if it does
+    /// not fit the budget (or the index).
+    fn place_fixed(&mut self, p: [f64; N]) -> Result<(), Option<Error>> {
+        if !all_finite(&p) || !self.domain.contains(&p) {
+            return Err(None);
+        }
+        let r = self.radius_at(&p);
+        if self
+            .index
+            .blocked(&self.points, &self.periods, &p, r)
+            .is_some()
+        {
+            return Err(None);
+        }
+        match self.store(p, r) {
+            Filed::Yes => Ok(()),
+            Filed::Stop => {
+                self.error = None;
+                Err(Some(Error::MemoryBudgetExceeded {
+                    points: 0,
+                    budget: self.budget,
+                }))
+            }
+        }
+    }
+
+    /// A uniform point of the box that the region admits, drawn as a
+    /// plain run's first point is, in up to [`first_point_tries`] tries,
+    /// or `None`.
+    fn first_in_region(&mut self) -> Option<[f64; N]> {
+        let (lo, extent) = (self.domain.lo(), self.domain.extent());
+        for _ in 0..first_point_tries(self.attempts) {
+            let p = zip_map(&lo, &extent, |l, e| l + unit(&mut self.rng) * e);
+            if self.domain.contains(&p) && self.region.admits(&p) {
+                return Some(p);
+            }
+        }
+        None
     }
 
     /// Stores `p` with radius `r`, if the estimated memory fits.
@@ -322,7 +476,7 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng, G: Region<N>> VaryingPoints<N, F, R, G> {
     /// Up to `k` candidates around active entry `i`, keeping the first
     /// that no stored point is too close to. The points that turn
     /// candidates away, the parent and its nearest neighbours of its band
@@ -432,6 +586,11 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> VaryingPoints<N, F, R> {
                 }
                 continue;
             }
+            // Last, where most candidates have already failed: the mask
+            // may be the caller's costly test (a shore, a polygon).
+            if !self.region.admits(&c) {
+                continue;
+            }
             match self.store(c, rc) {
                 Filed::Yes => {
                     self.remaining -= 1;
@@ -451,7 +610,9 @@ enum Step<const N: usize> {
     Stop,
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> Iterator for VaryingPoints<N, F, R> {
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng, G: Region<N>> Iterator
+    for VaryingPoints<N, F, R, G>
+{
     type Item = [f64; N];
 
     fn next(&mut self) -> Option<[f64; N]> {
@@ -460,6 +621,14 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> Iterator for VaryingPoints
         }
         if !self.started {
             self.started = true;
+            if let Some(p) = self.first_found.take() {
+                let r = self.radius_at(&p);
+                if !matches!(self.store(p, r), Filed::Yes) {
+                    return None;
+                }
+                self.remaining -= 1;
+                return Some(p);
+            }
             let (lo, extent) = (self.domain.lo(), self.domain.extent());
             let p = zip_map(&lo, &extent, |l, e| l + unit(&mut self.rng) * e);
             if !self.domain.contains(&p) {
@@ -518,7 +687,10 @@ impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> Iterator for VaryingPoints
     }
 }
 
-impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng> FusedIterator for VaryingPoints<N, F, R> {}
+impl<const N: usize, F: Fn(&[f64; N]) -> f64, R: Rng, G: Region<N>> FusedIterator
+    for VaryingPoints<N, F, R, G>
+{
+}
 
 #[cfg(test)]
 mod tests {
@@ -552,7 +724,13 @@ mod tests {
             r_min + (r_max - r_min) * (t - t.floor())
         };
         sampler
-            .varying(crate::random::seeded_rng(seed), r_min, field, levels)
+            .varying(
+                crate::random::seeded_rng(seed),
+                r_min,
+                field,
+                crate::Everywhere,
+                levels,
+            )
             .unwrap()
     }
 
