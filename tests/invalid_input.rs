@@ -519,8 +519,8 @@ fn a_plain_run_expected_far_over_is_refused() {
     );
 }
 
-/// A tiny radius in a huge box: no layout is refused up front for the
-/// sparse grid (it allocates nothing before its first point); the run
+/// A tiny radius in a huge box: the paged grid is not refused up front
+/// (it allocates one page for its first point); the run
 /// stops cleanly when the next point would take it past the budget, and
 /// says so. A dense grid of 1e18 cells is refused by `build()`.
 #[test]
@@ -529,8 +529,8 @@ fn tiny_radius_in_a_huge_box_stops_at_the_budget() {
     let s = PoissonDisk2::builder(huge_box(), 1e-3)
         .max_grid_bytes(budget)
         .build()
-        .expect("the sparse grid starts empty");
-    assert_eq!(s.resolved_layout(), GridLayout::Sparse, "sparse");
+        .expect("the paged grid starts with a page");
+    assert_eq!(s.resolved_layout(), GridLayout::Paged, "paged");
     let (n, error) = run_within_budget(&s, 1);
     assert!(n > 1000, "{n} points in 1 MiB");
     assert_eq!(
@@ -575,11 +575,11 @@ fn a_point_cap_makes_the_huge_box_complete() {
     let capped = PoissonDisk2::builder(huge_box(), 1e-3)
         .max_points(1000)
         .build()
-        .expect("the sparse grid starts empty");
+        .expect("the paged grid starts with a page");
     assert_eq!(
         capped.resolved_layout(),
-        GridLayout::Sparse,
-        "only the sparse grid can fit"
+        GridLayout::Paged,
+        "the dense grid cannot fit: pages"
     );
     assert!(
         capped.grid_bytes() <= DEFAULT_MAX_GRID_BYTES,
@@ -684,7 +684,7 @@ fn a_point_cap_makes_the_huge_box_complete_from_json() {
 }
 
 /// A box whose dense grid fits the default budget but not a small one:
-/// under the small budget the sparse grid runs until the budget, and a
+/// under the small budget the paged grid runs until the budget, and a
 /// point cap within it completes.
 #[test]
 fn a_small_budget_stops_the_run_and_a_cap_completes_it() {
@@ -696,8 +696,8 @@ fn a_small_budget_stops_the_run_and_a_cap_completes_it() {
     );
     let budget = 1 << 20;
     let small = PoissonDisk2::builder(domain, 0.01).max_grid_bytes(budget);
-    let uncapped = small.build().expect("the sparse grid starts empty");
-    assert_eq!(uncapped.resolved_layout(), GridLayout::Sparse, "sparse");
+    let uncapped = small.build().expect("the paged grid starts with a page");
+    assert_eq!(uncapped.resolved_layout(), GridLayout::Paged, "paged");
     let (n, error) = run_within_budget(&uncapped, 4);
     assert!(
         matches!(error, Some(Error::MemoryBudgetExceeded { points, budget: b })
@@ -720,15 +720,15 @@ fn a_small_budget_stops_the_run_and_a_cap_completes_it() {
 #[test]
 fn forced_dense_over_budget_is_grid_too_large() {
     let budget = 1 << 20;
-    // Capped, so the sparse grid fits the small budget and Auto is fine...
+    // Capped, so pages fit the small budget and Auto is fine...
     let small = PoissonDisk2::builder(unit_square(), 0.001)
         .max_points(100)
         .max_grid_bytes(budget);
-    let auto = small.build().expect("sparse fits under the cap");
+    let auto = small.build().expect("pages fit under the cap");
     assert_eq!(
         auto.resolved_layout(),
-        GridLayout::Sparse,
-        "Auto falls back to sparse"
+        GridLayout::Paged,
+        "Auto falls back to pages"
     );
     // ...but the dense grid of ~1400² cells does not.
     let dense_bytes = PoissonDisk2::builder(unit_square(), 0.001)
@@ -788,7 +788,8 @@ fn a_dense_grid_past_u32_indices_is_refused_whatever_the_budget() {
         },
         "8-D"
     );
-    // Auto falls back to the sparse grid, which has no such limit.
+    // Auto falls back to the sparse grid, which has no such limit (pages
+    // index their points with `u32` too).
     let auto = PoissonDisk2::builder(unit_square(), 1e-5)
         .max_grid_bytes(u64::MAX)
         .build()
@@ -976,7 +977,8 @@ const CANDIDATES: [Candidates; 2] = [Candidates::Annulus, Candidates::Sphere];
 #[test]
 fn box_thinner_than_r_on_an_axis() {
     for candidates in CANDIDATES {
-        for layout in LAYOUTS {
+        // Pages too: these boxes are bounded.
+        for layout in LAYOUTS.into_iter().chain([GridLayout::Paged]) {
             // A 1 × 0.01 strip at r = 0.1: between 1 / 0.2 and 1 / 0.1 + 1.
             let strip = Domain::from_extent([1.0, 0.01]).expect("box");
             assert_thin_domain(strip, 0.1, layout, candidates, 5, 5, 11);

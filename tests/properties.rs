@@ -280,6 +280,23 @@ fn check_case<const N: usize>(c: &Case<N>) -> Result<(), TestCaseError> {
             prop_assert!(N > 3, "{}: {}", ctx, e);
         }
     }
+
+    // Pages, where they apply (bounded boxes, 1-D to 3-D): the same points.
+    match sampler(c, GridLayout::Paged) {
+        Ok(paged) => {
+            let paged_points: Vec<[f64; N]> = paged.iter_seeded(c.seed).collect();
+            prop_assert!(
+                paged_points == points,
+                "{}: Paged and Sparse differ ({} and {} points)",
+                ctx,
+                paged_points.len(),
+                n
+            );
+        }
+        Err(e) => {
+            prop_assert!(N > 3 || c.periodic.iter().any(|&p| p), "{}: {}", ctx, e);
+        }
+    }
     Ok(())
 }
 

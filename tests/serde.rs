@@ -175,6 +175,7 @@ fn enums_are_lower_case_strings() {
         (GridLayout::Auto, "auto"),
         (GridLayout::Dense, "dense"),
         (GridLayout::Sparse, "sparse"),
+        (GridLayout::Paged, "paged"),
     ]);
     check(&[(Scheme::Sweep, "sweep"), (Scheme::Paper, "paper")]);
     assert!(

@@ -308,6 +308,18 @@ fn plan_paged<const N: usize>(
     for (c, &m) in cells.iter_mut().zip(&counts) {
         *c = usize::try_from(m).map_err(|_| u64::MAX)?;
     }
+    // `u32` point indices, as the dense grid's: the box (at the packing
+    // bound), the cap or the budget (at 8 bytes a coordinate) must keep
+    // the points below 2³² - 1, or the sparse grid takes the run.
+    let mut most = ln_max_points(domain, radius)
+        .exp()
+        .min(to_f64(budget / (8 * N as u64).max(1)));
+    if let Some(cap) = max_points {
+        most = most.min(to_f64(cap));
+    }
+    if most >= f64::from(u32::MAX) {
+        return Err(u64::MAX);
+    }
     let dense = DensePlan {
         cells,
         side,
