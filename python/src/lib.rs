@@ -18,6 +18,10 @@
 //! points), with Python's signal handlers run between chunks so that
 //! Ctrl-C stops a long run; a Python callback (a mask or a radius given as
 //! a function) takes the GIL back for its own call only.
+//!
+//! The field sampler (`bridson::Field`, 1 to 4 dimensions) is in
+//! [`field`], in the same shape: a match on `d`, a trait object, arrays
+//! without a copy, queries without the GIL.
 
 use bridson::{
     CameraPixels as CoreCameraPixels, Candidates, DefaultRng, Domain, Error, PixelSampler as _,

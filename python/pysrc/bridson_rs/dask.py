@@ -46,8 +46,8 @@ Box = tuple[tuple[float, ...], tuple[float, ...]]
 
 def default_chunk(field: Field) -> float:
     """The default chunk side: ``radius * 2**(18 / d)``, about ``2**18``
-    cubes of side ``r`` a chunk (``512 r`` in 2-D: about 260 000 points,
-    4 MB of points, a window of some 80 MB while it is made)."""
+    cubes of side ``r`` a chunk (``512 r`` in 2-D: about 180 000 points,
+    3 MB of points)."""
     return field.radius * 2.0 ** (18.0 / field.d)
 
 
