@@ -18,6 +18,10 @@
 //! points), with Python's signal handlers run between chunks so that
 //! Ctrl-C stops a long run; a Python callback (a mask or a radius given as
 //! a function) takes the GIL back for its own call only.
+//!
+//! The field sampler (`bridson::Field`, 1 to 4 dimensions) is in
+//! [`field`], in the same shape: a match on `d`, a trait object, arrays
+//! without a copy, queries without the GIL.
 
 use bridson::{
     CameraPixels as CoreCameraPixels, Candidates, DefaultRng, Domain, Error, PixelSampler as _,
@@ -31,6 +35,8 @@ use pyo3::prelude::*;
 use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
+
+mod field;
 
 /// Points made between two checks for Ctrl-C (and between two releases of
 /// the GIL): large enough that the check costs nothing, small enough (a
@@ -225,12 +231,12 @@ impl<const N: usize> Region<N> for Mask {
 }
 
 /// A radius field: an array over the box, or a Python callable.
-enum Field {
+enum RadiusField {
     Array(Raster<f64>),
     Callable(Callback),
 }
 
-impl Field {
+impl RadiusField {
     fn at(&self, p: &[f64]) -> f64 {
         match self {
             Self::Array(r) => r.at(p),
@@ -323,7 +329,7 @@ trait Sampler: Send + Sync {
         &self,
         seed: u64,
         r_min: f64,
-        field: Field,
+        field: RadiusField,
         failure: Arc<Failure>,
     ) -> PyResult<Box<dyn Stream>>;
     #[cfg(feature = "parallel")]
@@ -372,7 +378,7 @@ impl<const N: usize> Sampler for CorePoissonDisk<N> {
         &self,
         seed: u64,
         r_min: f64,
-        field: Field,
+        field: RadiusField,
         failure: Arc<Failure>,
     ) -> PyResult<Box<dyn Stream>> {
         let points = self
@@ -571,15 +577,15 @@ fn field(
     lo: &[f64],
     hi: &[f64],
     failure: &Arc<Failure>,
-) -> PyResult<Field> {
+) -> PyResult<RadiusField> {
     if radius.is_callable() {
-        return Ok(Field::Callable(Callback {
+        return Ok(RadiusField::Callable(Callback {
             f: radius.clone().unbind(),
             failure: Arc::clone(failure),
         }));
     }
     let array: PyReadonlyArrayDyn<'_, f64> = float_array(radius)?.extract()?;
-    Ok(Field::Array(Raster::new(lo, hi, &array)?))
+    Ok(RadiusField::Array(Raster::new(lo, hi, &array)?))
 }
 
 #[pymethods]
@@ -1253,6 +1259,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Pixels>()?;
     m.add_class::<PoissonPixelSampler>()?;
     m.add_class::<CameraPixels>()?;
+    m.add_class::<field::PyField>()?;
+    m.add_function(wrap_pyfunction!(field::chunk_boxes_of, m)?)?;
+    m.add_function(wrap_pyfunction!(field::field_sort, m)?)?;
+    m.add_function(wrap_pyfunction!(field::field_digest, m)?)?;
+    m.add("MAX_FIELD_DIM", field::MAX_FIELD_DIM)?;
     m.add("MAX_DIM", MAX_DIM)?;
     m.add("DEFAULT_ATTEMPTS", bridson::DEFAULT_ATTEMPTS)?;
     m.add("MAX_ATTEMPTS", bridson::MAX_ATTEMPTS)?;

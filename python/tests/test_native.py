@@ -1,6 +1,7 @@
 """The native API: NumPy arrays out, the crate's guarantees, its errors."""
 
 import _thread
+import signal
 import threading
 
 import numpy as np
@@ -185,6 +186,9 @@ def test_memory_budget_error():
 
 def test_ctrl_c_stops_a_long_run():
     s = b.PoissonDisk([0, 0], [2000, 2000], 0.5)
+    # Python's SIGINT handler, even in a process started in the
+    # background (which ignores SIGINT, so interrupt_main does nothing).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.05, _thread.interrupt_main)
     timer.start()
     try:
@@ -192,6 +196,7 @@ def test_ctrl_c_stops_a_long_run():
             s.generate(seed=1)
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
 
 
 def test_sampling_runs_without_the_gil():

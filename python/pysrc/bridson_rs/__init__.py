@@ -13,6 +13,12 @@ Native API (NumPy in, NumPy out, no SciPy needed):
   (:class:`Pixels`).
 - :class:`PoissonPixelSampler` and :class:`CameraPixels` -- camera samples
   for a renderer.
+- :class:`Field` -- a maximal set that is a pure function of (seed, radius,
+  domain, position), asked for box by box (``points_in``), 1 to 4
+  dimensions, bounded, periodic or unbounded; :func:`chunk_boxes`,
+  :func:`field_sort` (the canonical order) and :func:`field_digest` (an
+  order-independent digest). :mod:`bridson_rs.dask` makes Dask collections
+  of its points chunk by chunk (it needs Dask).
 
 The drop-in for ``scipy.stats.qmc.PoissonDisk`` is
 :class:`bridson_rs.qmc.PoissonDisk` (it needs SciPy).
@@ -22,24 +28,34 @@ from ._native import (
     DEFAULT_ATTEMPTS,
     MAX_ATTEMPTS,
     MAX_DIM,
+    MAX_FIELD_DIM,
     MAX_SAMPLES_PER_PIXEL,
     CameraPixels,
+    Field,
     Pixels,
     Points,
     PoissonDisk,
     PoissonPixelSampler,
     Tiled,
+    chunk_boxes,
+    field_digest,
+    field_sort,
 )
 
 __all__ = [
     "DEFAULT_ATTEMPTS",
     "MAX_ATTEMPTS",
     "MAX_DIM",
+    "MAX_FIELD_DIM",
     "MAX_SAMPLES_PER_PIXEL",
     "CameraPixels",
+    "Field",
     "Pixels",
     "Points",
     "PoissonDisk",
     "PoissonPixelSampler",
     "Tiled",
+    "chunk_boxes",
+    "field_digest",
+    "field_sort",
 ]

@@ -11,6 +11,7 @@ MAX_DIM: int
 DEFAULT_ATTEMPTS: int
 MAX_ATTEMPTS: int
 MAX_SAMPLES_PER_PIXEL: int
+MAX_FIELD_DIM: int
 
 Seed = int
 """A seed: any int in ``0 .. 2**64``."""
@@ -234,3 +235,107 @@ class CameraPixels(
     def __next__(
         self,
     ) -> Tuple[int, int, FloatArray, FloatArray, FloatArray, FloatArray]: ...
+
+FieldParams = Tuple[
+    int, Optional[list[float]], Optional[list[float]], list[bool], float, int, int
+]
+"""``(d, lo, hi, periodic, radius, seed, max_window_bytes)``; ``lo`` and
+``hi`` are ``None`` for an unbounded field."""
+
+class Field:
+    """A maximal Poisson disk set that is a pure function of (seed, radius,
+    domain, position): :meth:`points_in` returns exactly the whole set's
+    points in a box, bit for bit, whatever the order of the queries, their
+    size, the threads or the machine. Every point of the domain is within
+    ``radius`` of a point (maximal).
+
+    ``Field(lo, hi, radius, seed)`` is the set on the box ``lo <= x < hi``
+    (1 to 4 dimensions), each axis bounded or periodic (``periodic``: a
+    bool for every axis or one per axis); :meth:`unbounded` is the set on
+    all of space. ``max_window_bytes`` is the memory budget of one query
+    (default 1 GiB). Bad settings raise ``ValueError`` with the crate's
+    message. Fields pickle (as their :attr:`params`) and compare equal when
+    their settings are equal.
+    """
+
+    def __init__(
+        self,
+        lo: Sequence[float],
+        hi: Sequence[float],
+        radius: float,
+        seed: Seed,
+        *,
+        periodic: Union[bool, Sequence[bool], None] = None,
+        max_window_bytes: int = 2**30,
+    ) -> None: ...
+    @staticmethod
+    def unbounded(d: int, radius: float, seed: Seed, *, max_window_bytes: int = 2**30) -> "Field":
+        """The set on all of ``d``-dimensional space (an endless world): the
+        lattice is anchored at the origin, so every box sees the same
+        points."""
+    @staticmethod
+    def from_params(params: FieldParams) -> "Field":
+        """The field whose :attr:`params` are ``params``."""
+    @property
+    def params(self) -> FieldParams:
+        """The settings as plain values (what a Dask task receives)."""
+    @property
+    def d(self) -> int:
+        """The dimension."""
+    @property
+    def radius(self) -> float:
+        """The minimum distance ``r``."""
+    @property
+    def seed(self) -> int:
+        """The seed."""
+    @property
+    def lo(self) -> Optional[list[float]]:
+        """The box's lower corner, ``None`` when unbounded."""
+    @property
+    def hi(self) -> Optional[list[float]]:
+        """The box's upper corner (excluded), ``None`` when unbounded."""
+    @property
+    def periodic(self) -> list[bool]:
+        """Which axes wrap around."""
+    @property
+    def max_window_bytes(self) -> int:
+        """The memory budget of one query's window."""
+    def points_in(self, lo: Sequence[float], hi: Sequence[float]) -> FloatArray:
+        """The points in the half-open box ``lo <= x < hi``, ``(n, d)``, in
+        the canonical order (:func:`field_sort`). One query without the GIL;
+        over ``max_window_bytes`` it is a ``ValueError``: ask in chunks
+        with :meth:`points_in_parallel`."""
+    def points(self) -> FloatArray:
+        """Every point of a bounded field (``ValueError`` when unbounded)."""
+    def points_in_parallel(
+        self,
+        lo: Optional[Sequence[float]] = None,
+        hi: Optional[Sequence[float]] = None,
+        *,
+        chunk: Optional[float] = None,
+        threads: Optional[int] = None,
+    ) -> FloatArray:
+        """The points in ``lo <= x < hi`` (default: the field's box) made in
+        chunks of ``chunk`` on a side (default ``64 * radius``) on
+        ``threads`` threads (default: every core), in the canonical order:
+        the same array as :meth:`points_in`, bit for bit, for every chunk
+        and thread count. Ctrl-C stops it between batches of chunks."""
+    def __eq__(self, other: object) -> bool: ...
+
+def chunk_boxes(
+    lo: Sequence[float], hi: Sequence[float], side: float
+) -> Tuple[FloatArray, FloatArray]:
+    """The chunks of ``side`` over ``lo <= x < hi``: ``(los, his)``, two
+    ``(k, d)`` arrays, box ``i`` being ``los[i] <= x < his[i]``, the last
+    axis slowest. Every point of the box is in exactly one chunk."""
+
+def field_sort(points: npt.ArrayLike) -> FloatArray:
+    """A copy of ``points`` ``(n, d)`` in the field's canonical order:
+    lexicographic, the last axis first, by the bits' total order. Two sets
+    are equal exactly when their sorted arrays are equal bit for bit."""
+
+def field_digest(points: npt.ArrayLike) -> int:
+    """An order-independent 64-bit digest of ``points`` ``(n, d)``: the
+    wrapping sum of a hash of each point's bits, as printed (in hex) by
+    ``points --field --format none``. Digests of disjoint parts add up
+    (mod ``2**64``) to the digest of their union."""
