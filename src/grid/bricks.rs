@@ -34,7 +34,7 @@
 //! a stencil entry is a triple of indices into the candidate's window of
 //! those terms, so one stencil serves every position inside a brick.
 
-use super::dense::{Stencil, StencilShape, closer, for_each_image, locate, parts};
+use super::dense::{Stencil, StencilShape, closer, for_each_image, locate, part_of, parts};
 use super::{DensePlan, NeighbourGrid};
 use crate::budget::{bytes_of, vec_bytes};
 use crate::domain::Domain;
@@ -291,12 +291,7 @@ impl<const N: usize> Bricks<N> {
         let mut stencils = Vec::new();
         stencils.try_reserve_exact(count).ok()?;
         for k in 0..count {
-            let mut part = [0; N];
-            let mut rest = k;
-            for p in &mut part {
-                *p = rest % parts(N);
-                rest /= parts(N);
-            }
+            let part = part_of::<N>(k);
             stencils.push(entries(&Stencil::new(&shape, &stride, &part, parts(N))?)?);
         }
         let mut corners = Vec::new();

@@ -101,42 +101,13 @@ impl<const N: usize> Dense<N> {
             eta: plan.eta,
             radius,
         };
-        let full = Stencil::new(&shape, &stride, &[0; N], 1)?;
-        let wide = <&[usize; 2]>::try_from(stride.as_slice())
-            .ok()
-            .filter(|_| plan.reach.iter().all(|&p| p == 2));
-        let mut seed_offsets: Vec<isize> = if let Some(stride) = wide {
-            wide_seed(stride)?
-        } else if N <= 3 {
-            full.offsets.iter().copied().filter(|&o| o != 0).collect()
-        } else {
-            Vec::new()
-        };
-        seed_offsets.sort_unstable();
-        // With whole cells (from 5-D) every search uses `full`: no copy.
-        let count = if parts(N) > 1 {
-            parts(N).checked_pow(u32::try_from(N).ok()?)?
-        } else {
-            0
-        };
-        let mut stencils = Vec::new();
-        stencils.try_reserve_exact(count).ok()?;
-        for k in 0..count {
-            let mut part = [0; N];
-            let mut rest = k;
-            for p in &mut part {
-                *p = rest % parts(N);
-                rest /= parts(N);
-            }
-            stencils.push(Stencil::new(&shape, &stride, &part, parts(N))?);
-        }
-        let stencil_bytes = stencils
-            .iter()
-            .chain([&full])
-            .map(Stencil::bytes)
-            .sum::<u64>()
-            .saturating_add(vec_bytes(&stencils))
-            .saturating_add(vec_bytes(&seed_offsets));
+        let Searches {
+            full,
+            parts: stencils,
+            seed_offsets,
+            wide_seed: wide,
+            bytes: stencil_bytes,
+        } = Searches::new(&shape, &stride)?;
         Some(Self {
             cells,
             points,
@@ -152,7 +123,7 @@ impl<const N: usize> Dense<N> {
             full,
             parts: stencils,
             seed_offsets,
-            wide_seed: wide.is_some(),
+            wide_seed: wide,
             periods: domain.periods(),
             any_periodic: domain.any_periodic(),
             radius_squared: radius * radius,
@@ -405,6 +376,81 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
         }
         true
     }
+}
+
+/// What a grid of `u32` cells laid out with fixed strides searches with:
+/// the whole cell's stencil, one per part of a cell ([`parts`] per axis,
+/// part `Σ k_i·parts^i`; none with whole cells), and the seed's cells.
+/// Shared by [`Dense`] and the paged grid, whose pages have strides too.
+pub(crate) struct Searches {
+    pub(crate) full: Stencil,
+    pub(crate) parts: Vec<Stencil>,
+    /// The cells the seed reads, in address order: in 2-D with a reach of
+    /// 2 the cells within `2r` ([`wide_seed`]), up to 3-D the full stencil
+    /// but the centre, none from 4-D.
+    pub(crate) seed_offsets: Vec<isize>,
+    /// Whether the seed is [`wide_seed`]'s.
+    pub(crate) wide_seed: bool,
+    /// Heap bytes of all of it.
+    pub(crate) bytes: u64,
+}
+
+impl Searches {
+    /// The stencils for cells of `shape` laid out with `stride`, or `None`
+    /// if their memory cannot be had.
+    pub(crate) fn new<const N: usize>(
+        shape: &StencilShape<N>,
+        stride: &[usize; N],
+    ) -> Option<Self> {
+        let full = Stencil::new(shape, stride, &[0; N], 1)?;
+        let wide = <&[usize; 2]>::try_from(stride.as_slice())
+            .ok()
+            .filter(|_| shape.reach.iter().all(|&p| p == 2));
+        let mut seed_offsets: Vec<isize> = if let Some(stride) = wide {
+            wide_seed(stride)?
+        } else if N <= 3 {
+            full.offsets.iter().copied().filter(|&o| o != 0).collect()
+        } else {
+            Vec::new()
+        };
+        seed_offsets.sort_unstable();
+        // With whole cells (from 5-D) every search uses `full`: no copy.
+        let count = if parts(N) > 1 {
+            parts(N).checked_pow(u32::try_from(N).ok()?)?
+        } else {
+            0
+        };
+        let mut stencils = Vec::new();
+        stencils.try_reserve_exact(count).ok()?;
+        for k in 0..count {
+            stencils.push(Stencil::new(shape, stride, &part_of::<N>(k), parts(N))?);
+        }
+        let bytes = stencils
+            .iter()
+            .chain([&full])
+            .map(Stencil::bytes)
+            .sum::<u64>()
+            .saturating_add(vec_bytes(&stencils))
+            .saturating_add(vec_bytes(&seed_offsets));
+        Some(Self {
+            full,
+            parts: stencils,
+            seed_offsets,
+            wide_seed: wide.is_some(),
+            bytes,
+        })
+    }
+}
+
+/// Part `k` of a cell as its index on each axis (`k = Σ k_i·parts^i`).
+pub(crate) fn part_of<const N: usize>(k: usize) -> [usize; N] {
+    let mut part = [0; N];
+    let mut rest = k;
+    for p in &mut part {
+        *p = rest % parts(N);
+        rest /= parts(N);
+    }
+    part
 }
 
 /// The 2-D seed's cells, as linear offsets for `stride`: the 7×7 cells

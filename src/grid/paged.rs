@@ -21,7 +21,7 @@
 //! cannot hold is left to the sparse grid.
 
 use super::dense::{
-    EMPTY, Stencil, StencilShape, closer, locate, occupied, parts, wide_seed, wide_seed_rows,
+    EMPTY, Searches, Stencil, StencilShape, closer, locate, occupied, parts, wide_seed_rows,
 };
 use super::sparse::{CellHasher, table_bytes};
 use super::{DensePlan, NeighbourGrid};
@@ -296,35 +296,13 @@ impl<const N: usize> Paged<N> {
             eta: d.eta,
             radius,
         };
-        let full = Stencil::new(&shape, &stride, &[0; N], 1)?;
-        let wide = <&[usize; 2]>::try_from(stride.as_slice())
-            .ok()
-            .filter(|_| d.reach.iter().all(|&p| p == 2));
-        let mut seed_offsets: Vec<isize> = if let Some(stride) = wide {
-            wide_seed(stride)?
-        } else {
-            full.offsets.iter().copied().filter(|&o| o != 0).collect()
-        };
-        seed_offsets.sort_unstable();
-        let count = parts(N).checked_pow(u32::try_from(N).ok()?)?;
-        let mut stencils = Vec::new();
-        stencils.try_reserve_exact(count).ok()?;
-        for k in 0..count {
-            let mut part = [0; N];
-            let mut rest = k;
-            for p in &mut part {
-                *p = rest % parts(N);
-                rest /= parts(N);
-            }
-            stencils.push(Stencil::new(&shape, &stride, &part, parts(N))?);
-        }
-        let stencil_bytes = stencils
-            .iter()
-            .chain([&full])
-            .map(Stencil::bytes)
-            .sum::<u64>()
-            .saturating_add(vec_bytes(&stencils))
-            .saturating_add(vec_bytes(&seed_offsets));
+        let Searches {
+            full,
+            parts: stencils,
+            seed_offsets,
+            wide_seed,
+            bytes: stencil_bytes,
+        } = Searches::new(&shape, &stride)?;
         let last = d.cells.map(|m| m.saturating_sub(1));
         let mut last_page = [0usize; N];
         for ((lp, &l), &s) in last_page.iter_mut().zip(&last).zip(&plan.shift) {
@@ -345,7 +323,7 @@ impl<const N: usize> Paged<N> {
             full,
             parts: stencils,
             seed_offsets,
-            wide_seed: wide.is_some(),
+            wide_seed,
             stencil_bytes,
             radius_squared: radius * radius,
         })
