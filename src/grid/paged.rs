@@ -52,7 +52,7 @@ const SEED_MAX: usize = 32;
 /// grid's `SCAN_CHUNK`).
 const SCAN_CHUNK: usize = 8;
 
-/// The widest reach of the 2-D seed ([`wide_seed`]): 3 cells.
+/// The widest reach of the 2-D seed ([`wide_seed`](super::dense::wide_seed)): 3 cells.
 const WIDE_SEED_PAD: usize = 3;
 
 /// The paged grid's geometry: the dense plan's cells and the page shape.
