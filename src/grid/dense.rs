@@ -178,21 +178,12 @@ impl<const N: usize> Dense<N> {
         stencil: &Stencil,
         p: &[f64; N],
     ) -> Option<[f64; N]> {
-        // In chunks, nearest first: the occupied cells' indices without a
-        // branch (most cells are empty), then only those points.
-        let mut found = [EMPTY; SCAN_CHUNK];
-        for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
-            let n = occupied(&self.cells, base, chunk, &mut found);
-            for &index in found.iter().take(n) {
-                let Some(q) = self.points.get(index as usize) else {
-                    continue;
-                };
-                if closer::<PERIODIC, N>(p, q, &self.periods, self.radius_squared) {
-                    return Some(*q);
-                }
-            }
-        }
-        None
+        let near = Near {
+            cells: &self.cells,
+            points: &self.points,
+            base,
+        };
+        near.conflict::<PERIODIC>(stencil, p, &self.periods, self.radius_squared)
     }
 
     /// Writes `p` into every ghost cell that stands for its cell across a
@@ -304,18 +295,16 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     /// collecting the indices of occupied cells without a branch; then
     /// those points. Up to 3-D only: the 4-D stencil has 841 cells.
     #[inline(always)]
-    fn seed(&self, p: &[f64; N], limit: usize, mut take: impl FnMut(&[f64; N])) {
+    fn seed(&self, p: &[f64; N], limit: usize, take: impl FnMut(&[f64; N])) {
         if N > 3 {
             return;
         }
-        let base = self.base(&self.cell_of(p));
-        let mut found = [EMPTY; SEED_MAX];
-        let n = occupied(&self.cells, base, &self.seed_offsets, &mut found);
-        for &index in found.iter().take(n.min(limit)) {
-            if let Some(q) = self.points.get(index as usize) {
-                take(q);
-            }
-        }
+        let near = Near {
+            cells: &self.cells,
+            points: &self.points,
+            base: self.base(&self.cell_of(p)),
+        };
+        near.seed(&self.seed_offsets, limit, take);
     }
 
     #[inline(always)]
@@ -378,10 +367,60 @@ impl<const N: usize> NeighbourGrid<N> for Dense<N> {
     }
 }
 
+/// A candidate's neighbourhood in an array of `u32` cells (the dense
+/// grid's, or one page of the paged grid's): the cells, the points they
+/// index, and the candidate's cell.
+pub(crate) struct Near<'a, const N: usize> {
+    pub(crate) cells: &'a [u32],
+    pub(crate) points: &'a [[f64; N]],
+    pub(crate) base: usize,
+}
+
+impl<const N: usize> Near<'_, N> {
+    /// The first point of `stencil`'s cells closer than `r` to `p`: in
+    /// chunks, nearest first, the occupied cells' indices without a branch
+    /// (most cells are empty), then only those points.
+    #[inline(always)]
+    pub(crate) fn conflict<const PERIODIC: bool>(
+        &self,
+        stencil: &Stencil,
+        p: &[f64; N],
+        periods: &[f64; N],
+        radius_squared: f64,
+    ) -> Option<[f64; N]> {
+        let mut found = [EMPTY; SCAN_CHUNK];
+        for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
+            let n = occupied(self.cells, self.base, chunk, &mut found);
+            for &index in found.iter().take(n) {
+                let Some(q) = self.points.get(index as usize) else {
+                    continue;
+                };
+                if closer::<PERIODIC, N>(p, q, periods, radius_squared) {
+                    return Some(*q);
+                }
+            }
+        }
+        None
+    }
+
+    /// Hands up to `limit` points of the cells at `offsets` to `take`.
+    #[inline(always)]
+    pub(crate) fn seed(&self, offsets: &[isize], limit: usize, mut take: impl FnMut(&[f64; N])) {
+        let mut found = [EMPTY; SEED_MAX];
+        let n = occupied(self.cells, self.base, offsets, &mut found);
+        for &index in found.iter().take(n.min(limit)) {
+            if let Some(q) = self.points.get(index as usize) {
+                take(q);
+            }
+        }
+    }
+}
+
 /// What a grid of `u32` cells laid out with fixed strides searches with:
 /// the whole cell's stencil, one per part of a cell ([`parts`] per axis,
 /// part `Σ k_i·parts^i`; none with whole cells), and the seed's cells.
 /// Shared by [`Dense`] and the paged grid, whose pages have strides too.
+#[derive(Debug)]
 pub(crate) struct Searches {
     pub(crate) full: Stencil,
     pub(crate) parts: Vec<Stencil>,

@@ -20,9 +20,7 @@
 //! written into pages across the period, and a periodic box the dense grid
 //! cannot hold is left to the sparse grid.
 
-use super::dense::{
-    EMPTY, Searches, Stencil, StencilShape, closer, locate, occupied, parts, wide_seed_rows,
-};
+use super::dense::{EMPTY, Near, Searches, StencilShape, locate, parts, wide_seed_rows};
 use super::sparse::{CellHasher, table_bytes};
 use super::{DensePlan, NeighbourGrid};
 use crate::budget::{bytes_of, reserve_one, vec_bytes};
@@ -44,13 +42,6 @@ const fn page_shift(n: usize) -> u32 {
 
 /// Index 0 of `points` is this sentinel, which every empty cell points to.
 const FAR: f64 = f64::INFINITY;
-
-/// The most occupied cells [`Paged::seed`] collects, as the dense grid.
-const SEED_MAX: usize = 32;
-
-/// Cells a search looks up before it checks their points (as the dense
-/// grid's `SCAN_CHUNK`).
-const SCAN_CHUNK: usize = 8;
 
 /// The widest reach of the 2-D seed ([`wide_seed`](super::dense::wide_seed)): 3 cells.
 const WIDE_SEED_PAD: usize = 3;
@@ -265,11 +256,8 @@ pub(crate) struct Paged<const N: usize> {
     /// Strides of a page's padded cells.
     stride: [usize; N],
     page_len: usize,
-    full: Stencil,
-    parts: Vec<Stencil>,
-    seed_offsets: Vec<isize>,
-    wide_seed: bool,
-    stencil_bytes: u64,
+    /// The stencils and the seed's cells, for a page's strides.
+    searches: Searches,
     radius_squared: f64,
 }
 
@@ -296,13 +284,7 @@ impl<const N: usize> Paged<N> {
             eta: d.eta,
             radius,
         };
-        let Searches {
-            full,
-            parts: stencils,
-            seed_offsets,
-            wide_seed,
-            bytes: stencil_bytes,
-        } = Searches::new(&shape, &stride)?;
+        let searches = Searches::new(&shape, &stride)?;
         let last = d.cells.map(|m| m.saturating_sub(1));
         let mut last_page = [0usize; N];
         for ((lp, &l), &s) in last_page.iter_mut().zip(&last).zip(&plan.shift) {
@@ -320,11 +302,7 @@ impl<const N: usize> Paged<N> {
             pad: plan.pad,
             stride,
             page_len,
-            full,
-            parts: stencils,
-            seed_offsets,
-            wide_seed,
-            stencil_bytes,
+            searches,
             radius_squared: radius * radius,
         })
     }
@@ -342,25 +320,26 @@ impl<const N: usize> Paged<N> {
         (page, base)
     }
 
-    /// The cells of the page that `cell` lies in, and its index there;
-    /// `None` if that page has not been allocated (then no point lies
-    /// within its halo).
+    /// The neighbourhood of `cell` in its page; `None` if that page has
+    /// not been allocated (then no point lies within its halo).
     #[inline(always)]
-    fn find(&self, cell: &[usize; N]) -> Option<(&[u32], usize)> {
+    fn near(&self, cell: &[usize; N]) -> Option<Near<'_, N>> {
         let (page, base) = self.page_of(cell);
         let id = self.directory.get(&page)?;
         let cells = self.pages.get(id as usize)?;
-        Some((cells, base))
+        Some(Near {
+            cells,
+            points: &self.points,
+            base,
+        })
     }
 
     /// Per axis, the pages whose cells or halo hold `cell`.
     fn axis_pages(&self, cell: &[usize; N]) -> [AxisPages; N] {
         let mut out = [([(0, 0); 3], 0); N];
         let axes = self.shift.iter().zip(&self.pad).zip(&self.last_page);
-        for ((slots, len), (&c, ((&shift, &pad), &last_page))) in out
-            .iter_mut()
-            .map(|(s, l)| (s, l))
-            .zip(cell.iter().zip(axes))
+        for ((slots, len), (&c, ((&shift, &pad), &last_page))) in
+            out.iter_mut().zip(cell.iter().zip(axes))
         {
             let side = 1usize << shift;
             let home = c >> shift;
@@ -414,29 +393,6 @@ impl<const N: usize> Paged<N> {
         }
     }
 
-    #[inline(always)]
-    fn scan(
-        &self,
-        cells: &[u32],
-        base: usize,
-        stencil: &Stencil,
-        p: &[f64; N],
-    ) -> Option<[f64; N]> {
-        let mut found = [EMPTY; SCAN_CHUNK];
-        for chunk in stencil.offsets.chunks(SCAN_CHUNK) {
-            let n = occupied(cells, base, chunk, &mut found);
-            for &index in found.iter().take(n) {
-                let Some(q) = self.points.get(index as usize) else {
-                    continue;
-                };
-                if closer::<false, N>(p, q, &[0.0; N], self.radius_squared) {
-                    return Some(*q);
-                }
-            }
-        }
-        None
-    }
-
     fn page_bytes(&self) -> u64 {
         bytes_of::<u32>(self.page_len)
     }
@@ -448,44 +404,37 @@ impl<const N: usize> NeighbourGrid<N> for Paged<N> {
     #[inline(always)]
     fn conflict(&self, p: &[f64; N]) -> Option<[f64; N]> {
         let (cell, part) = locate(p, &self.lo, &self.inv_side, &self.last, parts(N));
-        let (cells, base) = self.find(&cell)?;
-        let stencil = self.parts.get(part).unwrap_or(&self.full);
-        self.scan(cells, base, stencil, p)
+        let near = self.near(&cell)?;
+        let stencil = self.searches.parts.get(part).unwrap_or(&self.searches.full);
+        near.conflict::<false>(stencil, p, &[0.0; N], self.radius_squared)
     }
 
     /// As the dense grid's seed, within the point's page.
     #[inline(always)]
-    fn seed(&self, p: &[f64; N], limit: usize, mut take: impl FnMut(&[f64; N])) {
+    fn seed(&self, p: &[f64; N], limit: usize, take: impl FnMut(&[f64; N])) {
         let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
-        let Some((cells, base)) = self.find(&cell) else {
-            return;
-        };
-        let mut found = [EMPTY; SEED_MAX];
-        let n = occupied(cells, base, &self.seed_offsets, &mut found);
-        for &index in found.iter().take(n.min(limit)) {
-            if let Some(q) = self.points.get(index as usize) {
-                take(q);
-            }
+        if let Some(near) = self.near(&cell) {
+            near.seed(&self.searches.seed_offsets, limit, take);
         }
     }
 
     #[inline(always)]
     fn prefetch(&self, p: &[f64; N]) {
         let (cell, _) = locate(p, &self.lo, &self.inv_side, &self.last, 1);
-        let Some((cells, base)) = self.find(&cell) else {
+        let Some(Near { cells, base, .. }) = self.near(&cell) else {
             return;
         };
         // As the dense grid: the wide seed's 7 rows in 2-D, else the
         // stencil's.
         match self.stride.get(1) {
-            Some(&row) if self.wide_seed => {
+            Some(&row) if self.searches.wide_seed => {
                 for [first, last] in wide_seed_rows(row) {
                     crate::prefetch::prefetch(cells, base.wrapping_add_signed(first));
                     crate::prefetch::prefetch(cells, base.wrapping_add_signed(last));
                 }
             }
             _ => {
-                for &[first, last] in &self.full.rows {
+                for &[first, last] in &self.searches.full.rows {
                     crate::prefetch::prefetch(cells, base.wrapping_add_signed(first));
                     crate::prefetch::prefetch(cells, base.wrapping_add_signed(last));
                 }
@@ -499,7 +448,7 @@ impl<const N: usize> NeighbourGrid<N> for Paged<N> {
             .saturating_add(vec_bytes(&self.pages))
             .saturating_add(self.directory.bytes())
             .saturating_add(vec_bytes(&self.points))
-            .saturating_add(self.stencil_bytes)
+            .saturating_add(self.searches.bytes)
     }
 
     /// Allocates the pages `p` will be written into that do not exist yet,
@@ -551,21 +500,21 @@ impl<const N: usize> NeighbourGrid<N> for Paged<N> {
         if index == u32::MAX {
             return false;
         }
-        // The home cell must be free (rounding can put two valid points in
-        // one cell: the newcomer is dropped) and every page allocated
-        // ([`reserve`](NeighbourGrid::reserve) came first).
-        match self.find(&cell) {
-            Some((cells, base)) if cells.get(base) == Some(&EMPTY) => {}
-            _ => return false,
-        }
-        let mut targets: smallvec::SmallVec<[([usize; N], usize); 4]> = smallvec::SmallVec::new();
-        self.for_each_page(&cell, |page, at| targets.push((*page, at)));
+        // Every page must be allocated ([`reserve`](NeighbourGrid::reserve)
+        // came first), and the home cell, the first of them, free (rounding
+        // can put two valid points in one cell: the newcomer is dropped).
         let mut slots: smallvec::SmallVec<[(usize, usize); 4]> = smallvec::SmallVec::new();
-        for (page, at) in &targets {
-            match self.directory.get(page) {
-                Some(id) => slots.push((id as usize, *at)),
-                None => return false,
-            }
+        let mut allocated = true;
+        self.for_each_page(&cell, |page, at| match self.directory.get(page) {
+            Some(id) => slots.push((id as usize, at)),
+            None => allocated = false,
+        });
+        let home_free = slots
+            .first()
+            .and_then(|&(id, at)| self.pages.get(id)?.get(at))
+            == Some(&EMPTY);
+        if !allocated || !home_free {
+            return false;
         }
         for (id, at) in slots {
             if let Some(slot) = self.pages.get_mut(id).and_then(|cells| cells.get_mut(at)) {
