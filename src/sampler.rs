@@ -639,6 +639,7 @@ impl<const N: usize> PoissonDisk<N> {
                 Grid::Bricks(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Dense(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Paged(g) => place(g, &mut it.active, *p, it.budget),
+                Grid::PagedBricks(g) => place(g, &mut it.active, *p, it.budget),
                 Grid::Sparse(g) => place(g, &mut it.active, *p, it.budget),
             };
             match stored {
@@ -888,6 +889,10 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
                     #[inline(always)]
                     || state.grow(g),
                 ),
+                Grid::PagedBricks(g) => dispatch(
+                    #[inline(always)]
+                    || state.grow(g),
+                ),
                 Grid::Sparse(g) => dispatch(
                     #[inline(always)]
                     || state.grow(g),
@@ -903,6 +908,7 @@ impl<const N: usize, R: Rng, G: Region<N>> Points<N, R, G> {
                 Grid::Bricks(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Dense(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Paged(g) => store(g, &mut self.active, first, self.budget),
+                Grid::PagedBricks(g) => store(g, &mut self.active, first, self.budget),
                 Grid::Sparse(g) => store(g, &mut self.active, first, self.budget),
             };
             match stored {
@@ -1012,6 +1018,7 @@ impl<const N: usize, R, G> Points<N, R, G> {
             Grid::Bricks(g) => g.bytes(),
             Grid::Dense(g) => g.bytes(),
             Grid::Paged(g) => g.bytes(),
+            Grid::PagedBricks(g) => g.bytes(),
             Grid::Sparse(g) => g.bytes(),
         };
         grid.saturating_add(vec_bytes(&self.active))
@@ -1023,7 +1030,7 @@ impl<const N: usize, R, G> Points<N, R, G> {
     pub fn layout(&self) -> GridLayout {
         match self.grid {
             Grid::Bricks(_) | Grid::Dense(_) => GridLayout::Dense,
-            Grid::Paged(_) => GridLayout::Paged,
+            Grid::Paged(_) | Grid::PagedBricks(_) => GridLayout::Paged,
             Grid::Sparse(_) => GridLayout::Sparse,
         }
     }

@@ -40,7 +40,7 @@ use crate::budget::{bytes_of, vec_bytes};
 use crate::domain::Domain;
 
 /// Cells in a brick: the bits of its occupancy mask.
-const BRICK_CELLS: usize = 64;
+pub(super) const BRICK_CELLS: usize = 64;
 /// Points a brick stores itself. 13 fill five lines with the occupancy mask
 /// (8 + 13 × 24 = 320 bytes; the spill chunk's index lives beside the
 /// bricks, in [`Bricks::spill_starts`]); in the
@@ -48,7 +48,7 @@ const BRICK_CELLS: usize = 64;
 /// (1 M points, seed 1).
 pub(crate) const CAPACITY: usize = 13;
 /// A brick's spill chunk: room for every cell it has beyond [`CAPACITY`].
-const SPILL: usize = BRICK_CELLS - CAPACITY;
+pub(super) const SPILL: usize = BRICK_CELLS - CAPACITY;
 /// The largest reach (in cells) the windows hold: 3-D needs at most 3 (2 in
 /// any box over 4 cells a side; see `grid::needed_reach`).
 pub(crate) const MAX_REACH: usize = 3;
@@ -85,23 +85,23 @@ const fn brick_bits(n: usize) -> usize {
 /// asked for.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Brick<const N: usize> {
+pub(super) struct Brick<const N: usize> {
     /// A bit per cell, set where the cell holds a point (bit `x + 4y +
     /// 16z`, the cell's place in the brick); its population is the count
     /// of points stored (home and ghosts).
-    occupied: u64,
+    pub(super) occupied: u64,
     /// The first [`CAPACITY`] points, in the order of their cells' places.
-    points: [[f64; N]; CAPACITY],
+    pub(super) points: [[f64; N]; CAPACITY],
 }
 
 impl<const N: usize> Brick<N> {
-    const EMPTY: Self = Self {
+    pub(super) const EMPTY: Self = Self {
         occupied: 0,
         points: [[f64::INFINITY; N]; CAPACITY],
     };
 
     /// Points stored (home and ghosts), at most [`BRICK_CELLS`].
-    fn count(&self) -> usize {
+    pub(super) fn count(&self) -> usize {
         self.occupied.count_ones() as usize
     }
 }
@@ -195,6 +195,67 @@ fn entries<const N: usize>(stencil: &Stencil) -> Option<Vec<[u8; N]>> {
     Some(out)
 }
 
+/// A bricked grid's stencils as window entries (see [`entries`]): the
+/// whole cell's, the seed's (the whole one but the centre, in the `u32`
+/// grid's address order) and each part's.
+pub(super) struct Windowed<const N: usize> {
+    pub(super) full: Vec<[u8; N]>,
+    pub(super) seed: Vec<[u8; N]>,
+    pub(super) parts: Vec<Vec<[u8; N]>>,
+}
+
+impl<const N: usize> Windowed<N> {
+    pub(super) fn new(plan: &DensePlan<N>, radius: f64) -> Option<Self> {
+        let shape = StencilShape {
+            reach: plan.reach,
+            side: plan.side,
+            eta: plan.eta,
+            radius,
+        };
+        let stride: [usize; N] = core::array::from_fn(|i| 1 << (3 * i));
+        let full = entries(&Stencil::new(&shape, &stride, &[0; N], 1)?)?;
+        let centre = [u8::try_from(MAX_REACH).ok()?; N];
+        let mut seed: Vec<[u8; N]> = full.iter().copied().filter(|&e| e != centre).collect();
+        // Address order of the `u32` grid: the last axis slowest.
+        seed.sort_unstable_by(|a, b| a.iter().rev().cmp(b.iter().rev()));
+        let count = parts(N).checked_pow(u32::try_from(N).ok()?)?;
+        let mut stencils = Vec::new();
+        stencils.try_reserve_exact(count).ok()?;
+        for k in 0..count {
+            let part = part_of::<N>(k);
+            stencils.push(entries(&Stencil::new(&shape, &stride, &part, parts(N))?)?);
+        }
+        Some(Self {
+            full,
+            seed,
+            parts: stencils,
+        })
+    }
+}
+
+/// With a reach of 2 in 3-D, the part stencils' masks per part and place
+/// of the window's low corner (`part · 64 + place`) and the seed's per
+/// place (see [`stencil_masks`]).
+pub(super) type Masks = (Vec<[u64; 8]>, Vec<[u64; 8]>);
+
+pub(super) fn masks<const N: usize>(stencils: &[Vec<[u8; N]>], seed: &[[u8; N]]) -> Option<Masks> {
+    let mut part_masks = Vec::new();
+    part_masks
+        .try_reserve_exact(stencils.len().checked_mul(BRICK_CELLS)?)
+        .ok()?;
+    for stencil in stencils {
+        for place in 0..BRICK_CELLS {
+            part_masks.push(stencil_masks(stencil, place));
+        }
+    }
+    let mut seed_masks = Vec::new();
+    seed_masks.try_reserve_exact(BRICK_CELLS).ok()?;
+    for place in 0..BRICK_CELLS {
+        seed_masks.push(stencil_masks(seed, place));
+    }
+    Some((part_masks, seed_masks))
+}
+
 impl<const N: usize> Geometry<N> {
     /// The address of a cell inside the box.
     fn home(&self, cell: &[usize; N]) -> usize {
@@ -237,7 +298,7 @@ fn is_occupied<const N: usize>(bricks: &[Brick<N>], address: usize) -> bool {
 /// The rank of place `bit` among a brick's occupied cells: where its
 /// point is stored (points are kept in the order of their cells' places).
 #[inline(always)]
-fn rank(occupied: u64, bit: usize) -> usize {
+pub(super) fn rank(occupied: u64, bit: usize) -> usize {
     (occupied & ((1u64 << bit) - 1)).count_ones() as usize
 }
 
@@ -275,25 +336,11 @@ impl<const N: usize> Bricks<N> {
         let mut spill_starts = Vec::new();
         spill_starts.try_reserve_exact(brick_stride).ok()?;
         spill_starts.resize(brick_stride, 0);
-        let shape = StencilShape {
-            reach: plan.reach,
-            side: plan.side,
-            eta: plan.eta,
-            radius,
-        };
-        let stride: [usize; N] = core::array::from_fn(|i| 1 << (3 * i));
-        let full = entries(&Stencil::new(&shape, &stride, &[0; N], 1)?)?;
-        let centre = [u8::try_from(MAX_REACH).ok()?; N];
-        let mut seed: Vec<[u8; N]> = full.iter().copied().filter(|&e| e != centre).collect();
-        // Address order of the `u32` grid: the last axis slowest.
-        seed.sort_unstable_by(|a, b| a.iter().rev().cmp(b.iter().rev()));
-        let count = parts(N).checked_pow(u32::try_from(N).ok()?)?;
-        let mut stencils = Vec::new();
-        stencils.try_reserve_exact(count).ok()?;
-        for k in 0..count {
-            let part = part_of::<N>(k);
-            stencils.push(entries(&Stencil::new(&shape, &stride, &part, parts(N))?)?);
-        }
+        let Windowed {
+            full,
+            seed,
+            parts: stencils,
+        } = Windowed::new(plan, radius)?;
         let mut corners = Vec::new();
         let mut corner_entries = Vec::new();
         corner_entries.try_reserve_exact(1 << N).ok()?;
@@ -319,22 +366,11 @@ impl<const N: usize> Bricks<N> {
         if plan.reach.iter().any(|&r| r != 2) {
             corners = Vec::new();
         }
-        let mut part_masks = Vec::new();
-        let mut seed_masks = Vec::new();
-        if N == 3 && !corners.is_empty() {
-            part_masks
-                .try_reserve_exact(stencils.len().checked_mul(BRICK_CELLS)?)
-                .ok()?;
-            for stencil in &stencils {
-                for place in 0..BRICK_CELLS {
-                    part_masks.push(stencil_masks(stencil, place));
-                }
-            }
-            seed_masks.try_reserve_exact(BRICK_CELLS).ok()?;
-            for place in 0..BRICK_CELLS {
-                seed_masks.push(stencil_masks(&seed, place));
-            }
-        }
+        let (part_masks, seed_masks) = if N == 3 && !corners.is_empty() {
+            masks(&stencils, &seed)?
+        } else {
+            (Vec::new(), Vec::new())
+        };
         let stencil_bytes = stencils
             .iter()
             .chain([&full, &seed])
@@ -742,7 +778,7 @@ impl<const N: usize> NeighbourGrid<N> for Bricks<N> {
 /// brick's occupied cells (later ranks move up one, into the brick's
 /// spill chunk past [`CAPACITY`]); `false` if the brick needs a spill
 /// chunk there is no room for.
-fn put<const N: usize>(
+pub(super) fn put<const N: usize>(
     bricks: &mut [Brick<N>],
     (spill, spill_starts): (&mut Vec<[f64; N]>, &mut [u32]),
     address: usize,

@@ -16,7 +16,10 @@
 //!   each with a halo copying its neighbours' edges, allocated where points
 //!   land. Memory ∝ number of points (plus partly used edge pages). Chosen
 //!   by [`GridLayout::Auto`] in bounded boxes where the dense grid would not
-//!   fit the budget (in 3-D only where the sparse grid needs a hash table).
+//!   fit the budget.
+//! - [`paged_bricks::PagedBricks`]: the paged grid in 3-D (a reach of 2):
+//!   the bricks, in pages of 8×8×8 bricks allocated where points land,
+//!   with no halo.
 //! - [`sparse::Sparse`]: a hash map (or an array of heads) from cells of
 //!   side `≈ r` to the points in them. Memory ∝ number of points, whatever
 //!   the box. Chosen by [`GridLayout::Auto`] from 4-D up, and where neither
@@ -33,6 +36,7 @@
 pub(crate) mod bricks;
 pub(crate) mod dense;
 pub(crate) mod paged;
+pub(crate) mod paged_bricks;
 pub(crate) mod sparse;
 
 use crate::domain::Domain;
@@ -47,9 +51,7 @@ use crate::vector::unit_ball_volume;
 #[non_exhaustive]
 pub enum GridLayout {
     /// Dense when `N <= 3` and the dense grid fits the memory budget;
-    /// else [`Paged`](Self::Paged) in a bounded box (in 3-D where the
-    /// sparse grid would need its hash table, past 16 M cells of side `r`);
-    /// otherwise sparse. From 4-D up the dense grid's neighbourhood (504
+    /// else [`Paged`](Self::Paged) in a bounded box; otherwise sparse. From 4-D up the dense grid's neighbourhood (504
     /// cells a check in 4-D, thousands from 5-D) costs more time and
     /// memory than the sparse grid's search (the journal's "Sparse grid
     /// from 4-D up" has the measurements).
@@ -588,20 +590,16 @@ pub(crate) fn plan<const N: usize>(
                 return Ok(GridPlan::Dense(d));
             }
             // Pages where the box is bounded: memory that follows the
-            // points, at 0.8 of the dense grid's speed in 2-D and 5× the
-            // sparse hash table's. In 3-D the sparse grid's array of heads
-            // (a box of at most 16 M cells of side `r`) searches 27 cells
-            // where the pages' `u32` cells take 91, and runs 1.2× faster;
-            // pages only replace its hash table (1.7× faster there). The
-            // journal's "Paged grid" has the runs.
-            let sparse_plan = sparse();
-            let sparse_array = matches!(&sparse_plan, Ok(s) if s.array && s.bytes <= budget);
-            if !(N == 3 && sparse_array)
-                && let Ok(p) = plan_paged(domain, radius, max_points, budget)
+            // points, at 0.8 of the dense grid's speed in 2-D and 0.9 in
+            // 3-D (pages of bricks), where the sparse grid runs at 0.65 of
+            // it with its array of heads and far slower with its hash
+            // table. The journal's "Paged grid" has the runs.
+            if let Ok(p) = plan_paged(domain, radius, max_points, budget)
                 && p.bytes <= budget
             {
                 return Ok(GridPlan::Paged(p));
             }
+            let sparse_plan = sparse();
             let dense_bytes = dense.map_or_else(|b| b, |d| d.bytes);
             match sparse_plan {
                 Ok(s) if s.bytes <= budget => Ok(GridPlan::Sparse(s)),
@@ -618,6 +616,7 @@ pub(crate) enum Grid<const N: usize> {
     Bricks(bricks::Bricks<N>),
     Dense(dense::Dense<N>),
     Paged(paged::Paged<N>),
+    PagedBricks(paged_bricks::PagedBricks<N>),
     Sparse(sparse::Sparse<N>),
 }
 
@@ -648,6 +647,16 @@ impl<const N: usize> Grid<N> {
                     Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
                 }
             },
+            GridPlan::Paged(p) if paged_bricks::applies(&p.dense.reach) => {
+                match paged_bricks::PagedBricks::try_new(p, domain, radius) {
+                    Some(grid) => Grid::PagedBricks(grid),
+                    None => {
+                        let s = plan_sparse(domain, radius, 0)
+                            .unwrap_or_else(|_| fallback_sparse(&p.dense));
+                        Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
+                    }
+                }
+            }
             GridPlan::Paged(p) => match paged::Paged::try_new(p, domain, radius) {
                 Some(grid) => Grid::Paged(grid),
                 None => {

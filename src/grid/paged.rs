@@ -21,6 +21,7 @@
 //! cannot hold is left to the sparse grid.
 
 use super::dense::{EMPTY, Near, Searches, StencilShape, locate, parts, wide_seed_rows};
+use super::paged_bricks;
 use super::sparse::{CellHasher, table_bytes};
 use super::{DensePlan, NeighbourGrid};
 use crate::budget::{bytes_of, reserve_one, vec_bytes};
@@ -82,21 +83,37 @@ impl<const N: usize> PagedPlan<N> {
             *p = if wide { WIDE_SEED_PAD } else { reach };
             page_len = page_len.checked_mul((1usize << *s).checked_add(p.checked_mul(2)?)?)?;
         }
-        let page = bytes_of::<u32>(page_len);
+        let bricked = paged_bricks::applies(&dense.reach);
         let window: u64 = dense
             .reach
             .iter()
             .map(|&p| 2 * p as u64 + 1)
             .try_fold(1u64, u64::checked_mul)?;
-        let stencils = window.checked_mul(super::dense::stencil_bytes_per_cell(N))?;
+        let (page, stencils, list) = if bricked {
+            (
+                paged_bricks::page_bytes::<N>(),
+                paged_bricks::stencil_bytes::<N>(),
+                paged_bricks::list_bytes::<N>(8),
+            )
+        } else {
+            (
+                bytes_of::<u32>(page_len),
+                window.checked_mul(super::dense::stencil_bytes_per_cell(N))?,
+                bytes_of::<Box<[u32]>>(8),
+            )
+        };
         // The least the first point takes: its page (more where it lies in
         // a neighbour's halo), its entries in the page list and the
         // directory, the sentinel, the point, an active entry. So a plan
         // over the budget is a run that cannot store one point.
         let mut pages = 1u64;
         for (&m, &sh) in dense.cells.iter().zip(&shift) {
-            let m = u64::try_from(m).ok()?;
-            pages = pages.saturating_mul(m.div_ceil(1 << sh));
+            let side = if bricked {
+                paged_bricks::pages_for(m)
+            } else {
+                m.div_ceil(1 << sh)
+            };
+            pages = pages.saturating_mul(u64::try_from(side).ok()?);
         }
         let array = pages.saturating_mul(4);
         let (directory, directory_bytes) = if array <= MAX_ARRAY_DIRECTORY_BYTES.min(budget / 16) {
@@ -108,7 +125,7 @@ impl<const N: usize> PagedPlan<N> {
         let bytes = stencils
             .checked_add(page)?
             .checked_add(directory_bytes)?
-            .checked_add(bytes_of::<Box<[u32]>>(8))?
+            .checked_add(list)?
             .checked_add(3 * point)?;
         Some(Self {
             dense,
@@ -140,7 +157,7 @@ const NO_PAGE: u32 = u32::MAX;
 /// coordinates cost 2.3× the dense grid's time in 3-D (a look-up a
 /// search). A hash table of the pages made in a huge box.
 #[derive(Debug)]
-enum Directory<const N: usize> {
+pub(super) enum Directory<const N: usize> {
     Array {
         numbers: Vec<u32>,
         stride: [usize; N],
@@ -151,7 +168,7 @@ enum Directory<const N: usize> {
 impl<const N: usize> Directory<N> {
     /// The array over `pages` pages a side, if its bytes are at most
     /// `most` and it can be allocated; else the empty table.
-    fn new(pages: &[usize; N], most: u64) -> Self {
+    pub(super) fn new(pages: &[usize; N], most: u64) -> Self {
         let table = || Self::Table(HashMap::default());
         let mut stride = [0usize; N];
         let mut total = 1usize;
@@ -174,7 +191,7 @@ impl<const N: usize> Directory<N> {
     }
 
     #[inline(always)]
-    fn get(&self, page: &[usize; N]) -> Option<u32> {
+    pub(super) fn get(&self, page: &[usize; N]) -> Option<u32> {
         match self {
             Self::Array { numbers, stride } => {
                 let at: usize = page.iter().zip(stride).map(|(p, s)| p * s).sum();
@@ -184,7 +201,7 @@ impl<const N: usize> Directory<N> {
         }
     }
 
-    fn bytes(&self) -> u64 {
+    pub(super) fn bytes(&self) -> u64 {
         match self {
             Self::Array { numbers, .. } => vec_bytes(numbers),
             Self::Table(map) => table_bytes(map.capacity(), entry_bytes::<N>()),
@@ -193,7 +210,7 @@ impl<const N: usize> Directory<N> {
 
     /// The bytes that making room for `more` entries takes at its peak
     /// (a table's old and new blocks are both held while it grows).
-    fn growth(&self, more: usize) -> u64 {
+    pub(super) fn growth(&self, more: usize) -> u64 {
         match self {
             Self::Array { .. } => 0,
             Self::Table(map) => {
@@ -210,14 +227,14 @@ impl<const N: usize> Directory<N> {
         }
     }
 
-    fn try_reserve(&mut self, more: usize) -> bool {
+    pub(super) fn try_reserve(&mut self, more: usize) -> bool {
         match self {
             Self::Array { .. } => true,
             Self::Table(map) => map.try_reserve(more).is_ok(),
         }
     }
 
-    fn insert(&mut self, page: [usize; N], number: u32) {
+    pub(super) fn insert(&mut self, page: [usize; N], number: u32) {
         match self {
             Self::Array { numbers, stride } => {
                 let at: usize = page.iter().zip(&*stride).map(|(p, s)| p * s).sum();
