@@ -203,9 +203,12 @@ impl<const N: usize> PoissonDisk<N> {
     /// [`Error::MemoryBudgetExceeded`] from the first slab (along the axis)
     /// that outgrew its share, its `budget` being that share, and
     /// [`Error::GridTooLarge`] if not even the sparse layout fits a share
-    /// (a budget of a few bytes), each as an [`Incomplete`] with no points
-    /// (a box of one slab keeps its points, as
-    /// [`generate`](Self::generate) does).
+    /// (a budget of a few bytes), each as an [`Incomplete`] that keeps the
+    /// points made up to the stop, in slab order: the slabs before the
+    /// failed one in its pass (all of the even slabs, if an odd one failed)
+    /// and the failed slab's own points up to its stop. Slabs after it are
+    /// dropped even where a thread had run them, so the kept points are
+    /// the same on any number of threads.
     ///
     /// # Example: a million-point scale set on all cores
     /// ```
@@ -252,11 +255,8 @@ impl<const N: usize> PoissonDisk<N> {
         threads: NonZeroUsize,
         rooms: impl FnOnce(Vec<usize>) -> Vec<usize>,
     ) -> Result<Vec<[f64; N]>, Incomplete<N>> {
-        // A slab that failed leaves no points: the slabs' runs are not
-        // collected until every one has ended.
-        let none = |e: Error| Incomplete::new(Vec::new(), e);
         if self.max_points().is_some_and(|cap| cap != u64::MAX) {
-            return Err(none(Error::PointCapInParallel));
+            return Err(Incomplete::new(Vec::new(), Error::PointCapInParallel));
         }
         let Some(slabs) = Slabs::plan(self.domain(), self.radius()) else {
             return self.generate_seeded(seed);
@@ -288,23 +288,30 @@ impl<const N: usize> PoissonDisk<N> {
             jobs.push((i, rng.clone(), portion));
             rng.jump();
         }
-        let evens = run_all(even, threads, |(i, rng, portion)| {
+        let (evens, stop) = run_all(even, threads, |(i, rng, portion)| {
             self.even_slab(&slabs, i, rng, share, portion)
-        })
-        .map_err(none)?;
-        let odds = run_all(odd, threads, |(i, rng, portion)| {
-            self.odd_slab(&slabs, i, rng, share, portion, &evens)
-        })
-        .map_err(none)?;
-        let mut written = Vec::with_capacity(slabs.count());
-        let mut spills = Vec::with_capacity(slabs.count());
-        for (e, o) in evens.into_iter().zip(odds) {
-            for slab in [e, o] {
-                written.push(slab.points.len());
-                spills.push(slab.spill);
+        });
+        let (odds, stop) = match stop {
+            Some(e) => (Vec::new(), Some(e)),
+            None => run_all(odd, threads, |(i, rng, portion)| {
+                self.odd_slab(&slabs, i, rng, share, portion, &evens)
+            }),
+        };
+        // Slab `2j` is even slab `j`, slab `2j + 1` odd slab `j`; the
+        // slabs not run (after a stop) keep nothing.
+        let mut written = vec![0; slabs.count()];
+        let mut spills = vec![Vec::new(); slabs.count()];
+        let placed = evens.into_iter().zip((0..).step_by(2));
+        for (slab, i) in placed.chain(odds.into_iter().zip((1..).step_by(2))) {
+            if let (Some(w), Some(s)) = (written.get_mut(i), spills.get_mut(i)) {
+                *w = slab.points.len();
+                *s = slab.spill;
             }
         }
         join(&mut buffer, &rooms, &written, spills);
+        if let Some(error) = stop {
+            return Err(Incomplete::new(buffer, error));
+        }
         // The rooms' unused ends, given back: a large buffer shrinks where it
         // is (no copy), and the caller holds 0.6 MiB less of 2-D's 1 M
         // points (the peak is the same).
@@ -393,9 +400,9 @@ impl<const N: usize> PoissonDisk<N> {
         rng: DefaultRng,
         budget: u64,
         mut portion: Portion<'a, N>,
-    ) -> Result<Written<'a, N>, Error> {
+    ) -> Ran<'a, N> {
         let Some((lo, hi)) = slabs.bounds(i) else {
-            return Ok(portion.written());
+            return (portion.written(), None);
         };
         let trim = TRIM_RADII * self.radius();
         let axis = slabs.axis;
@@ -408,14 +415,20 @@ impl<const N: usize> PoissonDisk<N> {
         } else {
             ((lo - trim).max(box_lo), (hi + trim).min(box_hi))
         };
-        let domain = self.along(slabs, grown_lo, grown_hi)?;
-        let mut run = self.slab_sampler(domain, budget)?.iter(rng);
+        let sampler = self
+            .along(slabs, grown_lo, grown_hi)
+            .and_then(|domain| self.slab_sampler(domain, budget));
+        let mut run = match sampler {
+            Ok(sampler) => sampler.iter(rng),
+            Err(e) => return (portion.written(), Some(e)),
+        };
         for p in run.by_ref() {
             if p.get(axis).is_some_and(|&x| lo <= x && x < hi) {
                 portion.push(p);
             }
         }
-        run.error().map_or(Ok(portion.written()), Err)
+        let error = run.error();
+        (portion.written(), error)
     }
 
     /// The points of odd slab `i`, written into `portion` as they come,
@@ -434,9 +447,9 @@ impl<const N: usize> PoissonDisk<N> {
         budget: u64,
         mut portion: Portion<'a, N>,
         evens: &[Written<'_, N>],
-    ) -> Result<Written<'a, N>, Error> {
+    ) -> Ran<'a, N> {
         let Some((lo, hi)) = slabs.bounds(i) else {
-            return Ok(portion.written());
+            return (portion.written(), None);
         };
         let axis = slabs.axis;
         let box_lo = *self.domain().lo().get(axis).unwrap_or(&lo);
@@ -445,11 +458,14 @@ impl<const N: usize> PoissonDisk<N> {
         let domain = if wraps {
             *self.domain()
         } else {
-            self.along(
+            match self.along(
                 slabs,
                 (lo - slabs.margin).max(box_lo),
                 (hi + slabs.margin).min(box_hi),
-            )?
+            ) {
+                Ok(domain) => domain,
+                Err(e) => return (portion.written(), Some(e)),
+            }
         };
         // Within the margin of the slab, across the wrap too.
         let near = |x: f64| {
@@ -468,12 +484,18 @@ impl<const N: usize> PoissonDisk<N> {
             .copied()
             .collect();
         let inside = move |p: &[f64; N]| p.get(axis).is_some_and(|&x| lo <= x && x < hi);
-        let sampler = self.slab_sampler(domain, budget)?;
-        let mut run = sampler.iter_with(rng, inside, &fixed)?;
+        let run = self
+            .slab_sampler(domain, budget)
+            .and_then(|sampler| sampler.iter_with(rng, inside, &fixed));
+        let mut run = match run {
+            Ok(run) => run,
+            Err(e) => return (portion.written(), Some(e)),
+        };
         for p in run.by_ref() {
             portion.push(p);
         }
-        run.error().map_or(Ok(portion.written()), Err)
+        let error = run.error();
+        (portion.written(), error)
     }
 
     /// The box with `lo <= x < hi` along the slab axis, bounded there.
@@ -565,6 +587,9 @@ impl<'a, const N: usize> Portion<'a, N> {
     }
 }
 
+/// A slab's points, and the error that stopped its run, if one did.
+type Ran<'a, const N: usize> = (Written<'a, N>, Option<Error>);
+
 /// A slab's points: the written part of its room, then its spill.
 #[derive(Debug)]
 struct Written<'a, const N: usize> {
@@ -611,16 +636,17 @@ fn join<T: Copy>(buffer: &mut Vec<T>, rooms: &[usize], written: &[usize], spills
 }
 
 /// `job` for each of `jobs`, on up to `threads` threads (the calling one
-/// among them), the results in the order of `jobs`, or the error of the
-/// first job (in that order) that failed. Jobs are handed out in order, so
-/// every job before a failed one has been started and runs to its end:
-/// which error comes back does not depend on the threads either. Each job
-/// is moved to the thread that takes it (a lock per job, taken once).
+/// among them): the results in the order of `jobs`, up to and including
+/// the first job (in that order) that failed, and its error. Jobs are
+/// handed out in order, so every job before a failed one has been started
+/// and runs to its end: what comes back does not depend on the threads
+/// (later jobs a thread had taken are dropped). Each job is moved to the
+/// thread that takes it (a lock per job, taken once).
 fn run_all<I: Send, T: Send>(
     jobs: Vec<I>,
     threads: NonZeroUsize,
-    job: impl Fn(I) -> Result<T, Error> + Sync,
-) -> Result<Vec<T>, Error> {
+    job: impl Fn(I) -> (T, Option<Error>) + Sync,
+) -> (Vec<T>, Option<Error>) {
     let count = jobs.len();
     let jobs: Vec<Mutex<Option<I>>> = jobs.into_iter().map(|j| Mutex::new(Some(j))).collect();
     let next = AtomicUsize::new(0);
@@ -639,7 +665,7 @@ fn run_all<I: Send, T: Send>(
                 break;
             };
             let result = job(input);
-            if result.is_err() {
+            if result.1.is_some() {
                 failed.fetch_min(index, Ordering::Relaxed);
             }
             done.push((index, result));
@@ -663,7 +689,14 @@ fn run_all<I: Send, T: Send>(
         done
     });
     done.sort_unstable_by_key(|(index, _)| *index);
-    done.into_iter().map(|(_, result)| result).collect()
+    let mut results = Vec::with_capacity(done.len());
+    for (_, (value, error)) in done {
+        results.push(value);
+        if error.is_some() {
+            return (results, error);
+        }
+    }
+    (results, None)
 }
 
 #[cfg(test)]
