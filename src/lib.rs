@@ -235,9 +235,9 @@
 //! (`points --dim 2 --radius 0.00018` makes 18 988 665 at a peak RSS of
 //! 771 MB) and about 20 million on pages (at `0.000175` the dense plan no
 //! longer fits; the paged grid makes 20 089 318 in 19 s at 629 MB, where
-//! the sparse grid stopped at 7.5 million after 80 s); in 3-D about 15
-//! million on the bricks (`points --dim 3 --radius 0.0034`: 14 721 230 at
-//! 694 MB). Elsewhere 1 GiB over the table's bytes gives the largest set
+//! the sparse grid stopped at 7.5 million after 80 s); in 3-D about 16
+//! million on the bricks (`points --dim 3 --radius 0.0033`: 16 102 616 at
+//! 760 MB). Elsewhere 1 GiB over the table's bytes gives the largest set
 //! (derived, not run): about 55 million in 1-D; from 4-D to 8-D, 17, 10,
 //! 7, 6.5 and 6.4 million with the cell array, 5.7, 5.5, 2.7, 2.7 and 2.4
 //! million with the hash table. For more, raise
