@@ -103,42 +103,73 @@ struct Bank {
     counts: Vec<i64>,
     targets: Vec<i64>,
     classes: usize,
+    /// The points `(set, column)` of every orbit, kept by
+    /// `anneal_balanced` (empty otherwise).
+    members: Vec<Vec<(usize, usize)>>,
 }
 
 impl Bank {
     fn new(m: u32, spread: usize, rng: &mut Rng) -> Self {
         let n = 1usize << m;
         let sets = (n / 16).max(1) * spread;
-        let classes = if m < 3 { 1 } else { n / 4 };
         // The Hammersley net (c, reverse(c)), then a random Owen scramble of
         // each axis: a net, different for every set.
         let mut rows: Vec<Vec<usize>> = Vec::new();
-        let mut cols: Vec<Vec<usize>> = Vec::new();
         for s in 0..sets {
             // Nets come in pairs that start alike: a swap changes a net's
             // Walsh sums sum_p chi_u(x_p) chi_v(y_p) by multiples of 4, so
             // each net's sums are fixed mod 4, and balance needs the bank's
             // to vanish; two nets with the same residues always cancel.
             if s % 2 == 1 {
-                let (row, col) = (rows[s - 1].clone(), cols[s - 1].clone());
-                rows.push(row);
-                cols.push(col);
+                rows.push(rows[s - 1].clone());
                 continue;
             }
-            let flips_x = owen_flips(m, rng);
-            let flips_y = owen_flips(m, rng);
-            let mut row = vec![0; n];
-            for c in 0..n {
-                let r = reverse(c, m);
-                row[scramble(c, m, &flips_x)] = scramble(r, m, &flips_y);
-            }
-            let mut col = vec![0; n];
-            for (c, &r) in row.iter().enumerate() {
-                col[r] = c;
-            }
-            rows.push(row);
-            cols.push(col);
+            rows.push(scrambled_hammersley(m, rng));
         }
+        Self::with_rows(m, rows)
+    }
+
+    /// A bank balanced by construction: `families` nets, each with its
+    /// images under the digital shifts `x -> x ^ a` (even families) or
+    /// `y -> y ^ a` (odd ones), `a` over the `N/4` values with the top and
+    /// bottom bits clear. Those shifts keep a net a net and act on the
+    /// column (row) classes as a group acting regularly, so a family puts
+    /// `Σ_a C[x ^ a][y] = 4` points in every (column class, row class)
+    /// pair: `S·|orbit|/N` in every orbit, whatever the first net was.
+    fn family(m: u32, families: usize, rng: &mut Rng) -> Self {
+        let n = 1usize << m;
+        let shifts = if m < 3 { 1 } else { n / 4 };
+        let mut rows = Vec::new();
+        for f in 0..families {
+            let base = scrambled_hammersley(m, rng);
+            for t in 0..shifts {
+                let a = t << 1;
+                let row: Vec<usize> = if f % 2 == 0 {
+                    (0..n).map(|c| base[c ^ a]).collect()
+                } else {
+                    base.iter().map(|&r| r ^ a).collect()
+                };
+                rows.push(row);
+            }
+        }
+        Self::with_rows(m, rows)
+    }
+
+    /// A bank of the given nets, with its orbit counts and targets.
+    fn with_rows(m: u32, rows: Vec<Vec<usize>>) -> Self {
+        let n = 1usize << m;
+        let sets = rows.len();
+        let classes = if m < 3 { 1 } else { n / 4 };
+        let cols: Vec<Vec<usize>> = rows
+            .iter()
+            .map(|row| {
+                let mut col = vec![0; n];
+                for (c, &r) in row.iter().enumerate() {
+                    col[r] = c;
+                }
+                col
+            })
+            .collect();
         let r = 1.25 * d_hex(n) * n as f64;
         let reach = (r.ceil() as usize).min(n / 2);
         let mut bank = Self {
@@ -152,6 +183,7 @@ impl Bank {
             counts: vec![0; classes * classes],
             targets: vec![0; classes * classes],
             classes,
+            members: Vec::new(),
         };
         // Targets: S·|orbit|/N per orbit, kept at its lowest-index cell
         // pair (a <= b); the other entries stay 0.
@@ -573,6 +605,198 @@ impl Bank {
         after - before
     }
 
+    /// Builds `members` from the rows.
+    fn index_members(&mut self) {
+        self.members = vec![Vec::new(); self.counts.len()];
+        for s in 0..self.sets {
+            for c in 0..self.n {
+                let o = self.orbit(c, self.rows[s][c]);
+                self.members[o].push((s, c));
+            }
+        }
+    }
+
+    /// Swaps rows `a` and `b` of set `s`, keeping counts and members.
+    fn do_swap(&mut self, s: usize, a: usize, b: usize) {
+        let old = [
+            self.orbit(a, self.rows[s][a]),
+            self.orbit(b, self.rows[s][b]),
+        ];
+        self.apply_counts(s, a, b);
+        self.swap(s, a, b);
+        let new = [
+            self.orbit(a, self.rows[s][a]),
+            self.orbit(b, self.rows[s][b]),
+        ];
+        for (c, (o, p)) in [a, b].into_iter().zip(old.into_iter().zip(new)) {
+            if o != p {
+                let list = &mut self.members[o];
+                let at = list
+                    .iter()
+                    .position(|&x| x == (s, c))
+                    .expect("a point is in its orbit's list");
+                list.swap_remove(at);
+                self.members[p].push((s, c));
+            }
+        }
+    }
+
+    /// With the bank balanced but for the swap just made (which raised the
+    /// penalty by `dp`), the swap that brings the penalty back to 0 at the
+    /// least spacing energy, and that energy. It must take a point out of
+    /// one of the orbits the last swap filled (`moved`).
+    fn compensation(
+        &mut self,
+        moved: [usize; 2],
+        dp: i64,
+        undo: (usize, usize, usize),
+    ) -> Option<(f64, (usize, usize, usize))> {
+        let mut best: Option<(f64, (usize, usize, usize))> = None;
+        let orbits = if moved[0] == moved[1] {
+            &moved[..1]
+        } else {
+            &moved[..]
+        };
+        for &o in orbits {
+            if self.counts[o] <= self.targets[o] {
+                continue;
+            }
+            for k in 0..self.members[o].len() {
+                let (s2, c2) = self.members[o][k];
+                for level in 0..self.m {
+                    let d2 = self.partner(s2, c2, level);
+                    let (s, a, b) = undo;
+                    if s2 == s && (c2 == a || c2 == b) && (d2 == a || d2 == b) {
+                        continue;
+                    }
+                    if self.penalty_delta(s2, c2, d2) != -dp {
+                        continue;
+                    }
+                    let e2 = self.swap_energy(s2, c2, d2);
+                    if best.is_none_or(|(e, _)| e2 < e) {
+                        best = Some((e2, (s2, c2, d2)));
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// Simulated annealing that keeps a balanced bank balanced: a swap
+    /// that leaves every orbit's count alone is taken alone; any other is
+    /// paired with the cheapest swap (in any net) that undoes its effect on
+    /// the counts, and the pair is accepted or refused as one move.
+    /// `focus` is the share of proposals at points with no neighbour
+    /// inside `R` that are skipped unweighed, so that the search spends its
+    /// time where the spacing is poor.
+    fn anneal_balanced(&mut self, moves_per_point: usize, t0: f64, focus: f64, rng: &mut Rng) {
+        if self.m < 3 {
+            return;
+        }
+        assert_eq!(self.penalty(), 0, "the bank starts balanced");
+        self.index_members();
+        let total = moves_per_point * self.n * self.sets;
+        let t1 = 0.002f64;
+        let (mut paired, mut single, mut unmatched) = (0usize, 0usize, 0usize);
+        for step in 0..total {
+            let f = step as f64 / total as f64;
+            let t = t0 * (t1 / t0).powf(f);
+            let s = rng.below(self.sets);
+            let a = rng.below(self.n);
+            if focus > 0.0 && self.local(s, a) == 0.0 && rng.unit() < focus {
+                continue;
+            }
+            let level = rng.below(self.m as usize) as u32;
+            let b = self.partner(s, a, level);
+            let dp = self.penalty_delta(s, a, b);
+            let e1 = self.swap_energy(s, a, b);
+            if dp == 0 {
+                if e1 <= 0.0 || rng.unit() < (-e1 / t).exp() {
+                    self.do_swap(s, a, b);
+                    single += 1;
+                }
+                continue;
+            }
+            self.do_swap(s, a, b);
+            let moved = [
+                self.orbit(a, self.rows[s][a]),
+                self.orbit(b, self.rows[s][b]),
+            ];
+            match self.compensation(moved, dp, (s, a, b)) {
+                Some((e2, (s2, c2, d2)))
+                    if e1 + e2 <= 0.0 || rng.unit() < (-(e1 + e2) / t).exp() =>
+                {
+                    self.do_swap(s2, c2, d2);
+                    paired += 1;
+                }
+                found => {
+                    unmatched += usize::from(found.is_none());
+                    self.do_swap(s, a, b);
+                }
+            }
+        }
+        assert_eq!(self.penalty(), 0, "the balanced anneal kept the balance");
+        if std::env::var_os("NET_BANK_DEBUG").is_some() {
+            eprintln!("  balanced anneal: {single} single, {paired} paired, {unmatched} unmatched");
+        }
+    }
+
+    /// Simulated annealing that lets the balance go by at most `budget`:
+    /// a swap is refused if it would take the penalty above `budget`, and
+    /// weighed by its spacing energy plus `mu` times its penalty change.
+    /// Imbalances wander and cancel; the lowest-energy balanced bank seen
+    /// in the second half of the run is the result.
+    fn anneal_budget(&mut self, moves_per_point: usize, t0: f64, budget: i64, mu: f64, rng: &mut Rng) {
+        if self.m < 3 {
+            return;
+        }
+        assert_eq!(self.penalty(), 0, "the bank starts balanced");
+        let total = moves_per_point * self.n * self.sets;
+        let t1 = 0.002f64;
+        let mut penalty = 0i64;
+        let mut energy = 0.0f64;
+        let mut best: Option<(f64, Vec<Vec<usize>>)> = None;
+        let mut balanced_seen = 0usize;
+        for step in 0..total {
+            let f = step as f64 / total as f64;
+            let t = t0 * (t1 / t0).powf(f);
+            let s = rng.below(self.sets);
+            let a = rng.below(self.n);
+            let level = rng.below(self.m as usize) as u32;
+            let b = self.partner(s, a, level);
+            let dp = self.penalty_delta(s, a, b);
+            if penalty + dp > budget {
+                continue;
+            }
+            let e1 = self.swap_energy(s, a, b);
+            let delta = e1 + mu * dp as f64;
+            if delta <= 0.0 || rng.unit() < (-delta / t).exp() {
+                self.apply_counts(s, a, b);
+                self.swap(s, a, b);
+                penalty += dp;
+                energy += e1;
+                if penalty == 0 && f >= 0.5 {
+                    balanced_seen += 1;
+                    if best.as_ref().is_none_or(|(e, _)| energy < *e - 1e-9) {
+                        best = Some((energy, self.rows.clone()));
+                    }
+                }
+            }
+        }
+        if std::env::var_os("NET_BANK_DEBUG").is_some() {
+            eprintln!("  budget anneal: ends at penalty {penalty}, {balanced_seen} balanced states seen");
+        }
+        if penalty != 0
+            && let Some((e, rows)) = best
+        {
+            if std::env::var_os("NET_BANK_DEBUG").is_some() {
+                eprintln!("  back to the best balanced state, energy {e:.1} against {energy:.1}");
+            }
+            let fresh = Self::with_rows(self.m, rows);
+            *self = fresh;
+        }
+    }
+
     /// Greedy polish of each set's minimum distance: a swap is kept when
     /// it brings no pair closer than the set's current minimum, leaves the
     /// balance alone, and does not add pairs at the minimum.
@@ -624,6 +848,103 @@ impl Bank {
     }
 }
 
+/// A net on the `2^m × 2^m` grid that stays a net under every cyclic
+/// shift of its columns: the Hammersley net `(c, reverse(c))` with its rows
+/// Owen-scrambled (bit `i` from the top of the row of column `c` flipped
+/// as the flag of node `(i, c mod 2^i)` says; its columns stay put). The
+/// top `j` bits of a row then depend on `c mod 2^j` alone, and do so one
+/// to one, which is what every shifted elementary interval needs. The
+/// flags are annealed for spacing: a flip moves the `2^(m-i)` points of
+/// one node by `2^(m-1-i)` rows.
+fn shift_invariant_net(m: u32, steps: usize, t0: f64, rng: &mut Rng) -> Vec<usize> {
+    let n = 1usize << m;
+    // flags[i] holds the 2^i flags of level i.
+    let mut flags: Vec<Vec<bool>> = (0..m).map(|i| (0..1usize << i).map(|_| rng.next() & 1 == 1).collect()).collect();
+    let row_of = |flags: &Vec<Vec<bool>>, c: usize| {
+        let mut r = 0;
+        for i in 0..m as usize {
+            let bit = (c >> i) & 1 ^ usize::from(flags[i][c & ((1 << i) - 1)]);
+            r |= bit << (m as usize - 1 - i);
+        }
+        r
+    };
+    let rows: Vec<usize> = (0..n).map(|c| row_of(&flags, c)).collect();
+    let mut bank = Bank::with_rows(m, vec![rows]);
+    if m < 2 {
+        return bank.rows.swap_remove(0);
+    }
+    let t1 = 0.002f64;
+    let reach = bank.reach;
+    for step in 0..steps {
+        let f = step as f64 / steps as f64;
+        let t = t0 * (t1 / t0).powf(f);
+        // Deep levels are cheap and local; shallow ones move many points.
+        let i = (m as usize - 1).saturating_sub(rng.below(m as usize).min(rng.below(m as usize)));
+        let q = rng.below(1 << i);
+        let stride = 1usize << i;
+        let delta_row = 1usize << (m as usize - 1 - i);
+        // Energy of every pair with at least one moved point: pairs inside
+        // the moved set are met twice.
+        let energy = |bank: &Bank| {
+            let mut e = 0.0;
+            for c in (q..n).step_by(stride) {
+                e += bank.local(0, c);
+                let mut k = stride;
+                while k <= reach {
+                    for d in [(c + k) % n, (c + n - k) % n] {
+                        e -= 0.5 * bank.pair_energy(bank.dist2(0, c, d));
+                        if 2 * k == n {
+                            break;
+                        }
+                    }
+                    k += stride;
+                }
+            }
+            e
+        };
+        let flip = |bank: &mut Bank| {
+            for c in (q..n).step_by(stride) {
+                let r = bank.rows[0][c] ^ delta_row;
+                bank.rows[0][c] = r;
+                bank.cols[0][r] = c;
+            }
+        };
+        let before = energy(&bank);
+        flip(&mut bank);
+        let delta = energy(&bank) - before;
+        if delta <= 0.0 || rng.unit() < (-delta / t).exp() {
+            flags[i][q] = !flags[i][q];
+        } else {
+            flip(&mut bank);
+        }
+    }
+    debug_assert!((0..n).all(|c| bank.rows[0][c] == row_of(&flags, c)));
+    bank.rows.swap_remove(0)
+}
+
+/// Whether every cyclic shift of the columns of `row` is a net.
+fn shift_invariant(m: u32, row: &[usize]) -> bool {
+    let n = 1usize << m;
+    (0..n).all(|t| {
+        let shifted: Vec<usize> = (0..n).map(|c| row[(c + t) % n]).collect();
+        Bank::with_rows(m, vec![shifted]).is_net(0)
+    })
+}
+
+/// The Hammersley net `(c, reverse(c))` under a random Owen scramble of
+/// each axis, as rows by column.
+fn scrambled_hammersley(m: u32, rng: &mut Rng) -> Vec<usize> {
+    let n = 1usize << m;
+    let flips_x = owen_flips(m, rng);
+    let flips_y = owen_flips(m, rng);
+    let mut row = vec![0; n];
+    for c in 0..n {
+        let r = reverse(c, m);
+        row[scramble(c, m, &flips_x)] = scramble(r, m, &flips_y);
+    }
+    row
+}
+
 fn reverse(c: usize, m: u32) -> usize {
     if m == 0 {
         0
@@ -660,6 +981,16 @@ fn main() -> ExitCode {
     let mut lambda = 50.0f64;
     let mut lambda0 = 0.05f64;
     let mut min_m = 0u32;
+    let mut family_from = u32::MAX;
+    let mut families = 1usize;
+    let mut t0 = 2.0f64;
+    let mut budget = 0i64;
+    let mut mu = 1.0f64;
+    let mut polish_balanced = 0usize;
+    let mut polish_t0 = 0.05f64;
+    let mut shift_from = u32::MAX;
+    let mut shift_sets = 4usize;
+    let mut shift_steps = 200_000usize;
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         let value = args.next().unwrap_or_default();
@@ -672,6 +1003,16 @@ fn main() -> ExitCode {
             "--lambda" => lambda = value.parse().unwrap_or(50.0),
             "--min-m" => min_m = value.parse().unwrap_or(0),
             "--lambda0" => lambda0 = value.parse().unwrap_or(0.05),
+            "--family-from" => family_from = value.parse().unwrap_or(u32::MAX),
+            "--families" => families = value.parse().unwrap_or(1),
+            "--t0" => t0 = value.parse().unwrap_or(2.0),
+            "--budget" => budget = value.parse().unwrap_or(0),
+            "--mu" => mu = value.parse().unwrap_or(1.0),
+            "--polish-balanced" => polish_balanced = value.parse().unwrap_or(0),
+            "--polish-t0" => polish_t0 = value.parse().unwrap_or(0.05),
+            "--shift-from" => shift_from = value.parse().unwrap_or(u32::MAX),
+            "--shift-sets" => shift_sets = value.parse().unwrap_or(4),
+            "--shift-steps" => shift_steps = value.parse().unwrap_or(200_000),
             _ => {
                 eprintln!("usage: net_bank [--out FILE] [--max-m M] [--moves K] [--seed S]");
                 return ExitCode::from(2);
@@ -684,12 +1025,14 @@ fn main() -> ExitCode {
         table,
         "//! Generated by `cargo run --release --example net_bank -- {}`\n\
          //! (examples/net_bank.rs); do not edit. `NETS[m]` holds \
-         `{spread} · max(1, 2^m / 16)`\n//! (0,m,2)-nets on the `2^m × 2^m` \
-         grid of cells, net after net: entry `c` of a\n//! net is the row of \
-         the point in column `c`.\n\n",
+         (0,m,2)-nets on the\n//! `2^m × 2^m` grid of cells, net after net: \
+         entry `c` of a net is the row of\n//! the point in column `c`: \
+         `{spread} · max(1, 2^m / 16)` balanced nets below\n//! `m = {shift_from}`, \
+         `{shift_sets}` shift-invariant nets from there on (`SHIFTED[m]`).\n\n",
         flags.join(" ")
     );
     let mut names = Vec::new();
+    let mut shifted_flags = Vec::new();
     for m in 0..=max_m {
         if m < min_m && out.is_none() {
             continue;
@@ -706,11 +1049,38 @@ fn main() -> ExitCode {
         let mut attempt = 0u64;
         let bank = loop {
             let mut rng = Rng(seed ^ u64::from(m) << 32 ^ attempt << 48);
-            let mut bank = Bank::new(m, spread, &mut rng);
-            bank.anneal(k, lambda0.min(lambda), lambda, &mut rng);
-            bank.polish(k / 4 + 4, &mut rng);
-            let penalty = bank.penalty();
-            let nets = (0..bank.sets).all(|s| bank.is_net(s));
+            let mut bank = if m >= shift_from {
+                let rows = (0..shift_sets)
+                    .map(|_| shift_invariant_net(m, shift_steps, t0, &mut rng))
+                    .collect();
+                Bank::with_rows(m, rows)
+            } else if m >= family_from {
+                let mut bank = Bank::family(m, families, &mut rng);
+                if budget > 0 {
+                    bank.anneal_budget(k, t0, budget, mu, &mut rng);
+                } else {
+                    bank.anneal_balanced(k, t0, 0.0, &mut rng);
+                }
+                bank
+            } else {
+                let mut bank = Bank::new(m, spread, &mut rng);
+                bank.anneal(k, lambda0.min(lambda), lambda, &mut rng);
+                bank
+            };
+            if polish_balanced > 0 && bank.penalty() == 0 {
+                bank.anneal_balanced(polish_balanced, polish_t0, 0.95, &mut rng);
+            }
+            let shifted = m >= shift_from;
+            if !shifted {
+                bank.polish(k / 4 + 4, &mut rng);
+            }
+            // Shift-invariant nets need no balance from the bank: the
+            // sampler shifts their columns by a uniform whole number of
+            // cells, which spreads every point over every cell.
+            let penalty = if shifted { 0 } else { bank.penalty() };
+            let nets = (0..bank.sets).all(|s| {
+                bank.is_net(s) && (!shifted || shift_invariant(m, &bank.rows[s]))
+            });
             eprintln!(
                 "N {:5}, attempt {attempt}: {} sets, nets {nets}, balance penalty {penalty}, {:.1} s",
                 bank.n,
@@ -753,6 +1123,7 @@ fn main() -> ExitCode {
         }
         table.push_str("];\n\n");
         names.push(name);
+        shifted_flags.push(m >= shift_from);
     }
     let _ = writeln!(
         table,
@@ -761,6 +1132,16 @@ fn main() -> ExitCode {
         names
             .iter()
             .map(|n| format!("&{n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        table,
+        "\n/// Whether `NETS[m]` holds shift-invariant nets: every cyclic shift of\n/// an entry's columns is a net too.\npub(crate) static SHIFTED: [bool; {}] = [{}];",
+        shifted_flags.len(),
+        shifted_flags
+            .iter()
+            .map(ToString::to_string)
             .collect::<Vec<_>>()
             .join(", ")
     );
