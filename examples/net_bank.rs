@@ -4,22 +4,24 @@
 //! ```text
 //! cargo run --release --example net_bank -- --out src/render/net_table.rs
 //! cargo run --release --example net_bank -- --max-m 6     # a quick look, no file
+//! cargo run --release --example net_bank -- --min-m 8 --max-m 8 --shift-from 7
 //! ```
 //!
 //! # What it makes
-//! For every `m` in `0..=10` (`N = 2^m` points), `S = max(1, N/16)` nets on
-//! the `N × N` grid of cells: net `s` puts the point of column `c` in row
+//! For every `m` in `0..=max_m` (`N = 2^m` points), a bank of nets on the
+//! `N × N` grid of cells: net `s` puts the point of column `c` in row
 //! `rows[s][c]`. A set of cells is a (0,m,2)-net when every elementary
 //! interval of area `1/N` (`2^-k` wide, `2^-(m-k)` tall, any `k`) holds one
 //! point; the sampler then moves every point by the same offset inside its
 //! cell, so the spacing of the sampled set is exactly that of the cells.
 //!
-//! # How
-//! Simulated annealing, all `S` nets of one `N` at once, over one move that
-//! keeps the net property: the two points sharing an elementary interval of
-//! area `2/N` (shape `2^-a × 2^-(m-1-a)`) swap rows. Every other interval
-//! keeps its count, so the set stays a net (the generator checks it after
-//! every run too). The energy is
+//! # Balanced banks (`m < --shift-from`)
+//! `S = spread · max(1, N/16)` nets. Simulated annealing, all `S` nets of
+//! one `N` at once, over one move that keeps the net property: the two
+//! points sharing an elementary interval of area `2/N` (shape
+//! `2^-a × 2^-(m-1-a)`) swap rows. Every other interval keeps its count, so
+//! the set stays a net (the generator checks it after every run too). The
+//! energy is
 //! - spacing: the sum over pairs closer than `R = 1.25 d_hex` of
 //!   `(R²/d² - 1)³` (toroidal distance on the grid of cells);
 //! - balance, weighted up as the run cools: the sampler's moves (half
@@ -29,6 +31,18 @@
 //!   the bank must put `S·|orbit|/N` of its points in each orbit. The
 //!   penalty is the total distance from those counts, and a bank is
 //!   written only when it is 0.
+//!
+//! # Shift-invariant banks (`m >= --shift-from`)
+//! Nets whose every cyclic shift of the columns is a net as well:
+//! Hammersley's `(c, reverse(c))` with the rows Owen-scrambled and the
+//! columns left alone. The sampler shifts the columns by a uniform number
+//! of cells, so every cell is equally likely for every sample without any
+//! balance from the bank; that is what lets the bank reach 256 points and
+//! beyond (a balanced bank of 256 did not converge). By default one net
+//! per `m`, in closed form: the row of column `c` is
+//! `reverse(c ^ (c << 1) mod 2^m)`. `--shift-sets K` makes `K` (halved for
+//! every doubling above 256 points) and `--shift-steps K` anneals each
+//! net's flip flags from there, `K` flips tried per point.
 //!
 //! Single-threaded and deterministic: the same flags give the same table.
 
@@ -103,9 +117,6 @@ struct Bank {
     counts: Vec<i64>,
     targets: Vec<i64>,
     classes: usize,
-    /// The points `(set, column)` of every orbit, kept by
-    /// `anneal_balanced` (empty otherwise).
-    members: Vec<Vec<(usize, usize)>>,
 }
 
 impl Bank {
@@ -125,32 +136,6 @@ impl Bank {
                 continue;
             }
             rows.push(scrambled_hammersley(m, rng));
-        }
-        Self::with_rows(m, rows)
-    }
-
-    /// A bank balanced by construction: `families` nets, each with its
-    /// images under the digital shifts `x -> x ^ a` (even families) or
-    /// `y -> y ^ a` (odd ones), `a` over the `N/4` values with the top and
-    /// bottom bits clear. Those shifts keep a net a net and act on the
-    /// column (row) classes as a group acting regularly, so a family puts
-    /// `Σ_a C[x ^ a][y] = 4` points in every (column class, row class)
-    /// pair: `S·|orbit|/N` in every orbit, whatever the first net was.
-    fn family(m: u32, families: usize, rng: &mut Rng) -> Self {
-        let n = 1usize << m;
-        let shifts = if m < 3 { 1 } else { n / 4 };
-        let mut rows = Vec::new();
-        for f in 0..families {
-            let base = scrambled_hammersley(m, rng);
-            for t in 0..shifts {
-                let a = t << 1;
-                let row: Vec<usize> = if f % 2 == 0 {
-                    (0..n).map(|c| base[c ^ a]).collect()
-                } else {
-                    base.iter().map(|&r| r ^ a).collect()
-                };
-                rows.push(row);
-            }
         }
         Self::with_rows(m, rows)
     }
@@ -183,7 +168,6 @@ impl Bank {
             counts: vec![0; classes * classes],
             targets: vec![0; classes * classes],
             classes,
-            members: Vec::new(),
         };
         // Targets: S·|orbit|/N per orbit, kept at its lowest-index cell
         // pair (a <= b); the other entries stay 0.
@@ -605,198 +589,6 @@ impl Bank {
         after - before
     }
 
-    /// Builds `members` from the rows.
-    fn index_members(&mut self) {
-        self.members = vec![Vec::new(); self.counts.len()];
-        for s in 0..self.sets {
-            for c in 0..self.n {
-                let o = self.orbit(c, self.rows[s][c]);
-                self.members[o].push((s, c));
-            }
-        }
-    }
-
-    /// Swaps rows `a` and `b` of set `s`, keeping counts and members.
-    fn do_swap(&mut self, s: usize, a: usize, b: usize) {
-        let old = [
-            self.orbit(a, self.rows[s][a]),
-            self.orbit(b, self.rows[s][b]),
-        ];
-        self.apply_counts(s, a, b);
-        self.swap(s, a, b);
-        let new = [
-            self.orbit(a, self.rows[s][a]),
-            self.orbit(b, self.rows[s][b]),
-        ];
-        for (c, (o, p)) in [a, b].into_iter().zip(old.into_iter().zip(new)) {
-            if o != p {
-                let list = &mut self.members[o];
-                let at = list
-                    .iter()
-                    .position(|&x| x == (s, c))
-                    .expect("a point is in its orbit's list");
-                list.swap_remove(at);
-                self.members[p].push((s, c));
-            }
-        }
-    }
-
-    /// With the bank balanced but for the swap just made (which raised the
-    /// penalty by `dp`), the swap that brings the penalty back to 0 at the
-    /// least spacing energy, and that energy. It must take a point out of
-    /// one of the orbits the last swap filled (`moved`).
-    fn compensation(
-        &mut self,
-        moved: [usize; 2],
-        dp: i64,
-        undo: (usize, usize, usize),
-    ) -> Option<(f64, (usize, usize, usize))> {
-        let mut best: Option<(f64, (usize, usize, usize))> = None;
-        let orbits = if moved[0] == moved[1] {
-            &moved[..1]
-        } else {
-            &moved[..]
-        };
-        for &o in orbits {
-            if self.counts[o] <= self.targets[o] {
-                continue;
-            }
-            for k in 0..self.members[o].len() {
-                let (s2, c2) = self.members[o][k];
-                for level in 0..self.m {
-                    let d2 = self.partner(s2, c2, level);
-                    let (s, a, b) = undo;
-                    if s2 == s && (c2 == a || c2 == b) && (d2 == a || d2 == b) {
-                        continue;
-                    }
-                    if self.penalty_delta(s2, c2, d2) != -dp {
-                        continue;
-                    }
-                    let e2 = self.swap_energy(s2, c2, d2);
-                    if best.is_none_or(|(e, _)| e2 < e) {
-                        best = Some((e2, (s2, c2, d2)));
-                    }
-                }
-            }
-        }
-        best
-    }
-
-    /// Simulated annealing that keeps a balanced bank balanced: a swap
-    /// that leaves every orbit's count alone is taken alone; any other is
-    /// paired with the cheapest swap (in any net) that undoes its effect on
-    /// the counts, and the pair is accepted or refused as one move.
-    /// `focus` is the share of proposals at points with no neighbour
-    /// inside `R` that are skipped unweighed, so that the search spends its
-    /// time where the spacing is poor.
-    fn anneal_balanced(&mut self, moves_per_point: usize, t0: f64, focus: f64, rng: &mut Rng) {
-        if self.m < 3 {
-            return;
-        }
-        assert_eq!(self.penalty(), 0, "the bank starts balanced");
-        self.index_members();
-        let total = moves_per_point * self.n * self.sets;
-        let t1 = 0.002f64;
-        let (mut paired, mut single, mut unmatched) = (0usize, 0usize, 0usize);
-        for step in 0..total {
-            let f = step as f64 / total as f64;
-            let t = t0 * (t1 / t0).powf(f);
-            let s = rng.below(self.sets);
-            let a = rng.below(self.n);
-            if focus > 0.0 && self.local(s, a) == 0.0 && rng.unit() < focus {
-                continue;
-            }
-            let level = rng.below(self.m as usize) as u32;
-            let b = self.partner(s, a, level);
-            let dp = self.penalty_delta(s, a, b);
-            let e1 = self.swap_energy(s, a, b);
-            if dp == 0 {
-                if e1 <= 0.0 || rng.unit() < (-e1 / t).exp() {
-                    self.do_swap(s, a, b);
-                    single += 1;
-                }
-                continue;
-            }
-            self.do_swap(s, a, b);
-            let moved = [
-                self.orbit(a, self.rows[s][a]),
-                self.orbit(b, self.rows[s][b]),
-            ];
-            match self.compensation(moved, dp, (s, a, b)) {
-                Some((e2, (s2, c2, d2)))
-                    if e1 + e2 <= 0.0 || rng.unit() < (-(e1 + e2) / t).exp() =>
-                {
-                    self.do_swap(s2, c2, d2);
-                    paired += 1;
-                }
-                found => {
-                    unmatched += usize::from(found.is_none());
-                    self.do_swap(s, a, b);
-                }
-            }
-        }
-        assert_eq!(self.penalty(), 0, "the balanced anneal kept the balance");
-        if std::env::var_os("NET_BANK_DEBUG").is_some() {
-            eprintln!("  balanced anneal: {single} single, {paired} paired, {unmatched} unmatched");
-        }
-    }
-
-    /// Simulated annealing that lets the balance go by at most `budget`:
-    /// a swap is refused if it would take the penalty above `budget`, and
-    /// weighed by its spacing energy plus `mu` times its penalty change.
-    /// Imbalances wander and cancel; the lowest-energy balanced bank seen
-    /// in the second half of the run is the result.
-    fn anneal_budget(&mut self, moves_per_point: usize, t0: f64, budget: i64, mu: f64, rng: &mut Rng) {
-        if self.m < 3 {
-            return;
-        }
-        assert_eq!(self.penalty(), 0, "the bank starts balanced");
-        let total = moves_per_point * self.n * self.sets;
-        let t1 = 0.002f64;
-        let mut penalty = 0i64;
-        let mut energy = 0.0f64;
-        let mut best: Option<(f64, Vec<Vec<usize>>)> = None;
-        let mut balanced_seen = 0usize;
-        for step in 0..total {
-            let f = step as f64 / total as f64;
-            let t = t0 * (t1 / t0).powf(f);
-            let s = rng.below(self.sets);
-            let a = rng.below(self.n);
-            let level = rng.below(self.m as usize) as u32;
-            let b = self.partner(s, a, level);
-            let dp = self.penalty_delta(s, a, b);
-            if penalty + dp > budget {
-                continue;
-            }
-            let e1 = self.swap_energy(s, a, b);
-            let delta = e1 + mu * dp as f64;
-            if delta <= 0.0 || rng.unit() < (-delta / t).exp() {
-                self.apply_counts(s, a, b);
-                self.swap(s, a, b);
-                penalty += dp;
-                energy += e1;
-                if penalty == 0 && f >= 0.5 {
-                    balanced_seen += 1;
-                    if best.as_ref().is_none_or(|(e, _)| energy < *e - 1e-9) {
-                        best = Some((energy, self.rows.clone()));
-                    }
-                }
-            }
-        }
-        if std::env::var_os("NET_BANK_DEBUG").is_some() {
-            eprintln!("  budget anneal: ends at penalty {penalty}, {balanced_seen} balanced states seen");
-        }
-        if penalty != 0
-            && let Some((e, rows)) = best
-        {
-            if std::env::var_os("NET_BANK_DEBUG").is_some() {
-                eprintln!("  back to the best balanced state, energy {e:.1} against {energy:.1}");
-            }
-            let fresh = Self::with_rows(self.m, rows);
-            *self = fresh;
-        }
-    }
-
     /// Greedy polish of each set's minimum distance: a swap is kept when
     /// it brings no pair closer than the set's current minimum, leaves the
     /// balance alone, and does not add pairs at the minimum.
@@ -853,13 +645,25 @@ impl Bank {
 /// Owen-scrambled (bit `i` from the top of the row of column `c` flipped
 /// as the flag of node `(i, c mod 2^i)` says; its columns stay put). The
 /// top `j` bits of a row then depend on `c mod 2^j` alone, and do so one
-/// to one, which is what every shifted elementary interval needs. The
-/// flags are annealed for spacing: a flip moves the `2^(m-i)` points of
-/// one node by `2^(m-1-i)` rows.
-fn shift_invariant_net(m: u32, steps: usize, t0: f64, rng: &mut Rng) -> Vec<usize> {
+/// to one, which is what every shifted elementary interval needs.
+///
+/// It starts from the flags `flag(i, q) = bit i-1 of q`, the row of column
+/// `c` being `reverse(c ^ (c << 1) mod 2^m)`: ρ 0.658 for even `m` (at 16
+/// points no flags do better: an exhaustive search over all 2^15) and
+/// 0.670 to 0.736 for odd `m`. With `steps > 0` the flags are then
+/// annealed for spacing (a flip moves the `2^(m-i)` points of one node by
+/// `2^(m-1-i)` rows), and the result is kept only if its minimum distance
+/// is no smaller.
+fn shift_invariant_net(m: u32, steps: usize, rng: &mut Rng) -> Vec<usize> {
     let n = 1usize << m;
     // flags[i] holds the 2^i flags of level i.
-    let mut flags: Vec<Vec<bool>> = (0..m).map(|i| (0..1usize << i).map(|_| rng.next() & 1 == 1).collect()).collect();
+    let mut flags: Vec<Vec<bool>> = (0..m as usize)
+        .map(|i| {
+            (0..1usize << i)
+                .map(|q| i > 0 && (q >> (i - 1)) & 1 == 1)
+                .collect()
+        })
+        .collect();
     let row_of = |flags: &Vec<Vec<bool>>, c: usize| {
         let mut r = 0;
         for i in 0..m as usize {
@@ -869,11 +673,16 @@ fn shift_invariant_net(m: u32, steps: usize, t0: f64, rng: &mut Rng) -> Vec<usiz
         r
     };
     let rows: Vec<usize> = (0..n).map(|c| row_of(&flags, c)).collect();
+    debug_assert!(
+        (0..n).all(|c| rows[c] == reverse((c ^ c << 1) & (n - 1), m)),
+        "the closed form"
+    );
     let mut bank = Bank::with_rows(m, vec![rows]);
-    if m < 2 {
+    if m < 2 || steps == 0 {
         return bank.rows.swap_remove(0);
     }
-    let t1 = 0.002f64;
+    let start = (bank.min_dist2(0), bank.rows[0].clone());
+    let (t0, t1) = (0.05f64, 0.002f64);
     let reach = bank.reach;
     for step in 0..steps {
         let f = step as f64 / steps as f64;
@@ -918,16 +727,28 @@ fn shift_invariant_net(m: u32, steps: usize, t0: f64, rng: &mut Rng) -> Vec<usiz
             flip(&mut bank);
         }
     }
-    debug_assert!((0..n).all(|c| bank.rows[0][c] == row_of(&flags, c)));
+    debug_assert!(
+        (0..n).all(|c| bank.rows[0][c] == row_of(&flags, c)),
+        "the rows follow the flags"
+    );
+    if bank.min_dist2(0) < start.0 {
+        return start.1;
+    }
     bank.rows.swap_remove(0)
 }
 
 /// Whether every cyclic shift of the columns of `row` is a net.
 fn shift_invariant(m: u32, row: &[usize]) -> bool {
     let n = 1usize << m;
+    let mut seen = vec![false; n];
     (0..n).all(|t| {
-        let shifted: Vec<usize> = (0..n).map(|c| row[(c + t) % n]).collect();
-        Bank::with_rows(m, vec![shifted]).is_net(0)
+        (0..=m).all(|k| {
+            seen.fill(false);
+            (0..n).all(|c| {
+                let cell = (c >> (m - k)) << (m - k) | row[(c + t) % n] >> k;
+                !std::mem::replace(&mut seen[cell], true)
+            })
+        })
     })
 }
 
@@ -981,16 +802,9 @@ fn main() -> ExitCode {
     let mut lambda = 50.0f64;
     let mut lambda0 = 0.05f64;
     let mut min_m = 0u32;
-    let mut family_from = u32::MAX;
-    let mut families = 1usize;
-    let mut t0 = 2.0f64;
-    let mut budget = 0i64;
-    let mut mu = 1.0f64;
-    let mut polish_balanced = 0usize;
-    let mut polish_t0 = 0.05f64;
     let mut shift_from = u32::MAX;
-    let mut shift_sets = 4usize;
-    let mut shift_steps = 200_000usize;
+    let mut shift_sets = 1usize;
+    let mut shift_steps = 0usize;
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         let value = args.next().unwrap_or_default();
@@ -1003,18 +817,15 @@ fn main() -> ExitCode {
             "--lambda" => lambda = value.parse().unwrap_or(50.0),
             "--min-m" => min_m = value.parse().unwrap_or(0),
             "--lambda0" => lambda0 = value.parse().unwrap_or(0.05),
-            "--family-from" => family_from = value.parse().unwrap_or(u32::MAX),
-            "--families" => families = value.parse().unwrap_or(1),
-            "--t0" => t0 = value.parse().unwrap_or(2.0),
-            "--budget" => budget = value.parse().unwrap_or(0),
-            "--mu" => mu = value.parse().unwrap_or(1.0),
-            "--polish-balanced" => polish_balanced = value.parse().unwrap_or(0),
-            "--polish-t0" => polish_t0 = value.parse().unwrap_or(0.05),
             "--shift-from" => shift_from = value.parse().unwrap_or(u32::MAX),
-            "--shift-sets" => shift_sets = value.parse().unwrap_or(4),
-            "--shift-steps" => shift_steps = value.parse().unwrap_or(200_000),
+            "--shift-sets" => shift_sets = value.parse().unwrap_or(1),
+            "--shift-steps" => shift_steps = value.parse().unwrap_or(0),
             _ => {
-                eprintln!("usage: net_bank [--out FILE] [--max-m M] [--moves K] [--seed S]");
+                eprintln!(
+                    "usage: net_bank [--out FILE] [--min-m M] [--max-m M] [--moves K] [--seed S] \
+                     [--spread K] [--lambda0 L] [--lambda L] [--shift-from M] [--shift-sets K] \
+                     [--shift-steps K]"
+                );
                 return ExitCode::from(2);
             }
         }
@@ -1028,7 +839,7 @@ fn main() -> ExitCode {
          (0,m,2)-nets on the\n//! `2^m × 2^m` grid of cells, net after net: \
          entry `c` of a net is the row of\n//! the point in column `c`: \
          `{spread} · max(1, 2^m / 16)` balanced nets below\n//! `m = {shift_from}`, \
-         `{shift_sets}` shift-invariant nets from there on (`SHIFTED[m]`).\n\n",
+         shift-invariant ones from there on (`SHIFTED[m]`).\n\n",
         flags.join(" ")
     );
     let mut names = Vec::new();
@@ -1050,26 +861,18 @@ fn main() -> ExitCode {
         let bank = loop {
             let mut rng = Rng(seed ^ u64::from(m) << 32 ^ attempt << 48);
             let mut bank = if m >= shift_from {
-                let rows = (0..shift_sets)
-                    .map(|_| shift_invariant_net(m, shift_steps, t0, &mut rng))
+                // Fewer sets above 256 points: the column shifts balance
+                // any bank, and every entry reaches the same ρ.
+                let sets = (shift_sets >> m.saturating_sub(8)).max(1);
+                let rows = (0..sets)
+                    .map(|_| shift_invariant_net(m, shift_steps << m, &mut rng))
                     .collect();
                 Bank::with_rows(m, rows)
-            } else if m >= family_from {
-                let mut bank = Bank::family(m, families, &mut rng);
-                if budget > 0 {
-                    bank.anneal_budget(k, t0, budget, mu, &mut rng);
-                } else {
-                    bank.anneal_balanced(k, t0, 0.0, &mut rng);
-                }
-                bank
             } else {
                 let mut bank = Bank::new(m, spread, &mut rng);
                 bank.anneal(k, lambda0.min(lambda), lambda, &mut rng);
                 bank
             };
-            if polish_balanced > 0 && bank.penalty() == 0 {
-                bank.anneal_balanced(polish_balanced, polish_t0, 0.95, &mut rng);
-            }
             let shifted = m >= shift_from;
             if !shifted {
                 bank.polish(k / 4 + 4, &mut rng);
@@ -1078,9 +881,8 @@ fn main() -> ExitCode {
             // sampler shifts their columns by a uniform whole number of
             // cells, which spreads every point over every cell.
             let penalty = if shifted { 0 } else { bank.penalty() };
-            let nets = (0..bank.sets).all(|s| {
-                bank.is_net(s) && (!shifted || shift_invariant(m, &bank.rows[s]))
-            });
+            let nets = (0..bank.sets)
+                .all(|s| bank.is_net(s) && (!shifted || shift_invariant(m, &bank.rows[s])));
             eprintln!(
                 "N {:5}, attempt {attempt}: {} sets, nets {nets}, balance penalty {penalty}, {:.1} s",
                 bank.n,
@@ -1127,7 +929,7 @@ fn main() -> ExitCode {
     }
     let _ = writeln!(
         table,
-        "/// The bank of `2^m` points per net, for `m` in `0..={max_m}`.\npub(crate) static NETS: [&[u16]; {}] = [{}];",
+        "/// The bank of `2^m` points per net, for `m` in `0..={max_m}`.\n#[rustfmt::skip]\npub(crate) static NETS: [&[u16]; {}] = [{}];",
         names.len(),
         names
             .iter()
@@ -1137,7 +939,7 @@ fn main() -> ExitCode {
     );
     let _ = writeln!(
         table,
-        "\n/// Whether `NETS[m]` holds shift-invariant nets: every cyclic shift of\n/// an entry's columns is a net too.\npub(crate) static SHIFTED: [bool; {}] = [{}];",
+        "\n/// Whether `NETS[m]` holds shift-invariant nets: every cyclic shift of\n/// an entry's columns is a net too.\n#[rustfmt::skip]\npub(crate) static SHIFTED: [bool; {}] = [{}];",
         shifted_flags.len(),
         shifted_flags
             .iter()
