@@ -626,7 +626,7 @@ mod tests {
         );
     }
 
-    /// [`assert_balanced_at`] for every index up to 64 samples; up to 512,
+    /// [`assert_balanced_at`] for every index up to 64 samples; at 128,
     /// for the first, second, middle and last; above, for one (an index
     /// enters the moves only through `(unit · index + key) mod n`, which
     /// takes every value once as the key does, so the counts are the same
@@ -635,7 +635,7 @@ mod tests {
         let layout = Layout::build(n);
         let indices: Vec<u32> = match n {
             0..=64 => (0..n).collect(),
-            65..=512 => vec![0, 1, n / 2, n - 1],
+            65..=128 => vec![0, 1, n / 2, n - 1],
             _ => vec![n / 3],
         };
         for index in indices {
@@ -645,16 +645,16 @@ mod tests {
 
     #[test]
     fn every_index_is_equally_likely_in_every_cell_for_nets() {
-        // Up to 1024 samples: 32 · 1024² moves for the last.
-        for m in 0..NETS.len().min(11) {
+        // Up to 512 samples: 32 · 512² moves for the last.
+        for m in 0..NETS.len().min(10) {
             assert_balanced(1 << m);
         }
     }
 
     #[test]
-    #[ignore = "7·10^8 moves, 10 s in release: cargo test --release -- --ignored"]
+    #[ignore = "7·10^8 moves, 13 s in release: cargo test --release -- --ignored"]
     fn every_index_is_equally_likely_in_every_cell_for_big_nets() {
-        for m in 11..NETS.len() {
+        for m in 10..NETS.len() {
             assert_balanced(1 << m);
         }
     }
@@ -718,10 +718,35 @@ mod tests {
         })
     }
 
-    #[test]
-    fn shifted_bank_entries_stay_nets_under_every_column_shift() {
-        // What makes a shifted bank balanced (every column shift is one
-        // of its moves) without a balanced bank: each shift is a net.
+    /// Whether the top `j` bits of bank entry `set`'s rows depend on the
+    /// column `c` only through `c mod 2^j`, one to one, for every `j`: then
+    /// any `2^j` consecutive columns (every residue once) meet each block of
+    /// `n/2^j` rows once, which is every shifted elementary interval of
+    /// width `2^j/n` holding one point, so every shift is a net.
+    fn rows_follow_the_low_bits(layout: &Layout, set: u32) -> bool {
+        let (n, m) = (layout.n, layout.m.unwrap());
+        (1..=m).all(|j| {
+            let mut top = vec![u32::MAX; 1 << j];
+            let consistent = (0..n).all(|c| {
+                let [_, y] = layout.cell(set, c);
+                let slot = &mut top[(c & ((1 << j) - 1)) as usize];
+                let bits = y >> (m - j);
+                if *slot == u32::MAX {
+                    *slot = bits;
+                }
+                *slot == bits
+            });
+            let mut seen = vec![false; 1 << j];
+            consistent
+                && top
+                    .iter()
+                    .all(|&b| !std::mem::replace(&mut seen[b as usize], true))
+        })
+    }
+
+    /// Every shifted bank entry, with every column shift checked one by
+    /// one up to `max_n` points and by [`rows_follow_the_low_bits`] above.
+    fn assert_shifts_are_nets(max_n: u32) {
         let mut seen = 0;
         for m in 0..u32::try_from(NETS.len()).unwrap() {
             let layout = Layout::build(1 << m);
@@ -730,14 +755,39 @@ mod tests {
             }
             seen += 1;
             for set in 0..layout.sets {
+                let n = layout.n;
                 assert!(
-                    every_shift_is_a_net(&layout, set),
-                    "n {}, set {set}: a shift is not a net",
-                    layout.n
+                    rows_follow_the_low_bits(&layout, set),
+                    "n {n}, set {set}: rows do not follow the low bits"
                 );
+                if n <= max_n {
+                    assert!(
+                        every_shift_is_a_net(&layout, set),
+                        "n {n}, set {set}: a shift is not a net"
+                    );
+                }
             }
         }
         assert!(seen > 0, "no shifted bank");
+    }
+
+    #[test]
+    fn shifted_bank_entries_stay_nets_under_every_column_shift() {
+        // What makes a shifted bank balanced (every column shift is one
+        // of its moves) without a balanced bank: each shift is a net.
+        assert_shifts_are_nets(512);
+        // The structural check can fail: a balanced bank's nets are not
+        // shift-invariant.
+        let balanced = Layout::build(64);
+        assert!(!balanced.shifted);
+        assert!(!rows_follow_the_low_bits(&balanced, 0), "64, entry 0");
+        assert!(!every_shift_is_a_net(&balanced, 0), "64, entry 0");
+    }
+
+    #[test]
+    #[ignore = "every shift of 1024 to 4096 points one by one: 14 s in debug"]
+    fn every_column_shift_of_big_banks_is_a_net() {
+        assert_shifts_are_nets(u32::MAX);
     }
 
     #[test]
