@@ -4,22 +4,24 @@
 //! ```text
 //! cargo run --release --example net_bank -- --out src/render/net_table.rs
 //! cargo run --release --example net_bank -- --max-m 6     # a quick look, no file
+//! cargo run --release --example net_bank -- --min-m 8 --max-m 8 --shift-from 7
 //! ```
 //!
 //! # What it makes
-//! For every `m` in `0..=10` (`N = 2^m` points), `S = max(1, N/16)` nets on
-//! the `N × N` grid of cells: net `s` puts the point of column `c` in row
+//! For every `m` in `0..=max_m` (`N = 2^m` points), a bank of nets on the
+//! `N × N` grid of cells: net `s` puts the point of column `c` in row
 //! `rows[s][c]`. A set of cells is a (0,m,2)-net when every elementary
 //! interval of area `1/N` (`2^-k` wide, `2^-(m-k)` tall, any `k`) holds one
 //! point; the sampler then moves every point by the same offset inside its
 //! cell, so the spacing of the sampled set is exactly that of the cells.
 //!
-//! # How
-//! Simulated annealing, all `S` nets of one `N` at once, over one move that
-//! keeps the net property: the two points sharing an elementary interval of
-//! area `2/N` (shape `2^-a × 2^-(m-1-a)`) swap rows. Every other interval
-//! keeps its count, so the set stays a net (the generator checks it after
-//! every run too). The energy is
+//! # Balanced banks (`m < --shift-from`)
+//! `S = spread · max(1, N/16)` nets. Simulated annealing, all `S` nets of
+//! one `N` at once, over one move that keeps the net property: the two
+//! points sharing an elementary interval of area `2/N` (shape
+//! `2^-a × 2^-(m-1-a)`) swap rows. Every other interval keeps its count, so
+//! the set stays a net (the generator checks it after every run too). The
+//! energy is
 //! - spacing: the sum over pairs closer than `R = 1.25 d_hex` of
 //!   `(R²/d² - 1)³` (toroidal distance on the grid of cells);
 //! - balance, weighted up as the run cools: the sampler's moves (half
@@ -29,6 +31,18 @@
 //!   the bank must put `S·|orbit|/N` of its points in each orbit. The
 //!   penalty is the total distance from those counts, and a bank is
 //!   written only when it is 0.
+//!
+//! # Shift-invariant banks (`m >= --shift-from`)
+//! Nets whose every cyclic shift of the columns is a net as well:
+//! Hammersley's `(c, reverse(c))` with the rows Owen-scrambled and the
+//! columns left alone. The sampler shifts the columns by a uniform number
+//! of cells, so every cell is equally likely for every sample without any
+//! balance from the bank; that is what lets the bank reach 256 points and
+//! beyond (a balanced bank of 256 did not converge). By default one net
+//! per `m`, in closed form: the row of column `c` is
+//! `reverse(c ^ (c << 1) mod 2^m)`. `--shift-sets K` makes `K` (halved for
+//! every doubling above 256 points) and `--shift-steps K` anneals each
+//! net's flip flags from there, `K` flips tried per point.
 //!
 //! Single-threaded and deterministic: the same flags give the same table.
 
@@ -109,36 +123,38 @@ impl Bank {
     fn new(m: u32, spread: usize, rng: &mut Rng) -> Self {
         let n = 1usize << m;
         let sets = (n / 16).max(1) * spread;
-        let classes = if m < 3 { 1 } else { n / 4 };
         // The Hammersley net (c, reverse(c)), then a random Owen scramble of
         // each axis: a net, different for every set.
         let mut rows: Vec<Vec<usize>> = Vec::new();
-        let mut cols: Vec<Vec<usize>> = Vec::new();
         for s in 0..sets {
             // Nets come in pairs that start alike: a swap changes a net's
             // Walsh sums sum_p chi_u(x_p) chi_v(y_p) by multiples of 4, so
             // each net's sums are fixed mod 4, and balance needs the bank's
             // to vanish; two nets with the same residues always cancel.
             if s % 2 == 1 {
-                let (row, col) = (rows[s - 1].clone(), cols[s - 1].clone());
-                rows.push(row);
-                cols.push(col);
+                rows.push(rows[s - 1].clone());
                 continue;
             }
-            let flips_x = owen_flips(m, rng);
-            let flips_y = owen_flips(m, rng);
-            let mut row = vec![0; n];
-            for c in 0..n {
-                let r = reverse(c, m);
-                row[scramble(c, m, &flips_x)] = scramble(r, m, &flips_y);
-            }
-            let mut col = vec![0; n];
-            for (c, &r) in row.iter().enumerate() {
-                col[r] = c;
-            }
-            rows.push(row);
-            cols.push(col);
+            rows.push(scrambled_hammersley(m, rng));
         }
+        Self::with_rows(m, rows)
+    }
+
+    /// A bank of the given nets, with its orbit counts and targets.
+    fn with_rows(m: u32, rows: Vec<Vec<usize>>) -> Self {
+        let n = 1usize << m;
+        let sets = rows.len();
+        let classes = if m < 3 { 1 } else { n / 4 };
+        let cols: Vec<Vec<usize>> = rows
+            .iter()
+            .map(|row| {
+                let mut col = vec![0; n];
+                for (c, &r) in row.iter().enumerate() {
+                    col[r] = c;
+                }
+                col
+            })
+            .collect();
         let r = 1.25 * d_hex(n) * n as f64;
         let reach = (r.ceil() as usize).min(n / 2);
         let mut bank = Self {
@@ -624,6 +640,132 @@ impl Bank {
     }
 }
 
+/// A net on the `2^m × 2^m` grid that stays a net under every cyclic
+/// shift of its columns: the Hammersley net `(c, reverse(c))` with its rows
+/// Owen-scrambled (bit `i` from the top of the row of column `c` flipped
+/// as the flag of node `(i, c mod 2^i)` says; its columns stay put). The
+/// top `j` bits of a row then depend on `c mod 2^j` alone, and do so one
+/// to one, which is what every shifted elementary interval needs.
+///
+/// It starts from the flags `flag(i, q) = bit i-1 of q`, the row of column
+/// `c` being `reverse(c ^ (c << 1) mod 2^m)`: ρ 0.658 for even `m` (at 16
+/// points no flags do better: an exhaustive search over all 2^15) and
+/// 0.670 to 0.736 for odd `m`. With `steps > 0` the flags are then
+/// annealed for spacing (a flip moves the `2^(m-i)` points of one node by
+/// `2^(m-1-i)` rows), and the result is kept only if its minimum distance
+/// is no smaller.
+fn shift_invariant_net(m: u32, steps: usize, rng: &mut Rng) -> Vec<usize> {
+    let n = 1usize << m;
+    // flags[i] holds the 2^i flags of level i.
+    let mut flags: Vec<Vec<bool>> = (0..m as usize)
+        .map(|i| {
+            (0..1usize << i)
+                .map(|q| i > 0 && (q >> (i - 1)) & 1 == 1)
+                .collect()
+        })
+        .collect();
+    let row_of = |flags: &Vec<Vec<bool>>, c: usize| {
+        let mut r = 0;
+        for i in 0..m as usize {
+            let bit = (c >> i) & 1 ^ usize::from(flags[i][c & ((1 << i) - 1)]);
+            r |= bit << (m as usize - 1 - i);
+        }
+        r
+    };
+    let rows: Vec<usize> = (0..n).map(|c| row_of(&flags, c)).collect();
+    debug_assert!(
+        (0..n).all(|c| rows[c] == reverse((c ^ c << 1) & (n - 1), m)),
+        "the closed form"
+    );
+    let mut bank = Bank::with_rows(m, vec![rows]);
+    if m < 2 || steps == 0 {
+        return bank.rows.swap_remove(0);
+    }
+    let start = (bank.min_dist2(0), bank.rows[0].clone());
+    let (t0, t1) = (0.05f64, 0.002f64);
+    let reach = bank.reach;
+    for step in 0..steps {
+        let f = step as f64 / steps as f64;
+        let t = t0 * (t1 / t0).powf(f);
+        // Deep levels are cheap and local; shallow ones move many points.
+        let i = (m as usize - 1).saturating_sub(rng.below(m as usize).min(rng.below(m as usize)));
+        let q = rng.below(1 << i);
+        let stride = 1usize << i;
+        let delta_row = 1usize << (m as usize - 1 - i);
+        // Energy of every pair with at least one moved point: pairs inside
+        // the moved set are met twice.
+        let energy = |bank: &Bank| {
+            let mut e = 0.0;
+            for c in (q..n).step_by(stride) {
+                e += bank.local(0, c);
+                let mut k = stride;
+                while k <= reach {
+                    for d in [(c + k) % n, (c + n - k) % n] {
+                        e -= 0.5 * bank.pair_energy(bank.dist2(0, c, d));
+                        if 2 * k == n {
+                            break;
+                        }
+                    }
+                    k += stride;
+                }
+            }
+            e
+        };
+        let flip = |bank: &mut Bank| {
+            for c in (q..n).step_by(stride) {
+                let r = bank.rows[0][c] ^ delta_row;
+                bank.rows[0][c] = r;
+                bank.cols[0][r] = c;
+            }
+        };
+        let before = energy(&bank);
+        flip(&mut bank);
+        let delta = energy(&bank) - before;
+        if delta <= 0.0 || rng.unit() < (-delta / t).exp() {
+            flags[i][q] = !flags[i][q];
+        } else {
+            flip(&mut bank);
+        }
+    }
+    debug_assert!(
+        (0..n).all(|c| bank.rows[0][c] == row_of(&flags, c)),
+        "the rows follow the flags"
+    );
+    if bank.min_dist2(0) < start.0 {
+        return start.1;
+    }
+    bank.rows.swap_remove(0)
+}
+
+/// Whether every cyclic shift of the columns of `row` is a net.
+fn shift_invariant(m: u32, row: &[usize]) -> bool {
+    let n = 1usize << m;
+    let mut seen = vec![false; n];
+    (0..n).all(|t| {
+        (0..=m).all(|k| {
+            seen.fill(false);
+            (0..n).all(|c| {
+                let cell = (c >> (m - k)) << (m - k) | row[(c + t) % n] >> k;
+                !std::mem::replace(&mut seen[cell], true)
+            })
+        })
+    })
+}
+
+/// The Hammersley net `(c, reverse(c))` under a random Owen scramble of
+/// each axis, as rows by column.
+fn scrambled_hammersley(m: u32, rng: &mut Rng) -> Vec<usize> {
+    let n = 1usize << m;
+    let flips_x = owen_flips(m, rng);
+    let flips_y = owen_flips(m, rng);
+    let mut row = vec![0; n];
+    for c in 0..n {
+        let r = reverse(c, m);
+        row[scramble(c, m, &flips_x)] = scramble(r, m, &flips_y);
+    }
+    row
+}
+
 fn reverse(c: usize, m: u32) -> usize {
     if m == 0 {
         0
@@ -660,6 +802,9 @@ fn main() -> ExitCode {
     let mut lambda = 50.0f64;
     let mut lambda0 = 0.05f64;
     let mut min_m = 0u32;
+    let mut shift_from = u32::MAX;
+    let mut shift_sets = 1usize;
+    let mut shift_steps = 0usize;
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         let value = args.next().unwrap_or_default();
@@ -672,8 +817,15 @@ fn main() -> ExitCode {
             "--lambda" => lambda = value.parse().unwrap_or(50.0),
             "--min-m" => min_m = value.parse().unwrap_or(0),
             "--lambda0" => lambda0 = value.parse().unwrap_or(0.05),
+            "--shift-from" => shift_from = value.parse().unwrap_or(u32::MAX),
+            "--shift-sets" => shift_sets = value.parse().unwrap_or(1),
+            "--shift-steps" => shift_steps = value.parse().unwrap_or(0),
             _ => {
-                eprintln!("usage: net_bank [--out FILE] [--max-m M] [--moves K] [--seed S]");
+                eprintln!(
+                    "usage: net_bank [--out FILE] [--min-m M] [--max-m M] [--moves K] [--seed S] \
+                     [--spread K] [--lambda0 L] [--lambda L] [--shift-from M] [--shift-sets K] \
+                     [--shift-steps K]"
+                );
                 return ExitCode::from(2);
             }
         }
@@ -684,12 +836,14 @@ fn main() -> ExitCode {
         table,
         "//! Generated by `cargo run --release --example net_bank -- {}`\n\
          //! (examples/net_bank.rs); do not edit. `NETS[m]` holds \
-         `{spread} · max(1, 2^m / 16)`\n//! (0,m,2)-nets on the `2^m × 2^m` \
-         grid of cells, net after net: entry `c` of a\n//! net is the row of \
-         the point in column `c`.\n\n",
+         (0,m,2)-nets on the\n//! `2^m × 2^m` grid of cells, net after net: \
+         entry `c` of a net is the row of\n//! the point in column `c`: \
+         `{spread} · max(1, 2^m / 16)` balanced nets below\n//! `m = {shift_from}`, \
+         shift-invariant ones from there on (`SHIFTED[m]`).\n\n",
         flags.join(" ")
     );
     let mut names = Vec::new();
+    let mut shifted_flags = Vec::new();
     for m in 0..=max_m {
         if m < min_m && out.is_none() {
             continue;
@@ -706,11 +860,29 @@ fn main() -> ExitCode {
         let mut attempt = 0u64;
         let bank = loop {
             let mut rng = Rng(seed ^ u64::from(m) << 32 ^ attempt << 48);
-            let mut bank = Bank::new(m, spread, &mut rng);
-            bank.anneal(k, lambda0.min(lambda), lambda, &mut rng);
-            bank.polish(k / 4 + 4, &mut rng);
-            let penalty = bank.penalty();
-            let nets = (0..bank.sets).all(|s| bank.is_net(s));
+            let mut bank = if m >= shift_from {
+                // Fewer sets above 256 points: the column shifts balance
+                // any bank, and every entry reaches the same ρ.
+                let sets = (shift_sets >> m.saturating_sub(8)).max(1);
+                let rows = (0..sets)
+                    .map(|_| shift_invariant_net(m, shift_steps << m, &mut rng))
+                    .collect();
+                Bank::with_rows(m, rows)
+            } else {
+                let mut bank = Bank::new(m, spread, &mut rng);
+                bank.anneal(k, lambda0.min(lambda), lambda, &mut rng);
+                bank
+            };
+            let shifted = m >= shift_from;
+            if !shifted {
+                bank.polish(k / 4 + 4, &mut rng);
+            }
+            // Shift-invariant nets need no balance from the bank: the
+            // sampler shifts their columns by a uniform whole number of
+            // cells, which spreads every point over every cell.
+            let penalty = if shifted { 0 } else { bank.penalty() };
+            let nets = (0..bank.sets)
+                .all(|s| bank.is_net(s) && (!shifted || shift_invariant(m, &bank.rows[s])));
             eprintln!(
                 "N {:5}, attempt {attempt}: {} sets, nets {nets}, balance penalty {penalty}, {:.1} s",
                 bank.n,
@@ -753,14 +925,25 @@ fn main() -> ExitCode {
         }
         table.push_str("];\n\n");
         names.push(name);
+        shifted_flags.push(m >= shift_from);
     }
     let _ = writeln!(
         table,
-        "/// The bank of `2^m` points per net, for `m` in `0..={max_m}`.\npub(crate) static NETS: [&[u16]; {}] = [{}];",
+        "/// The bank of `2^m` points per net, for `m` in `0..={max_m}`.\n#[rustfmt::skip]\npub(crate) static NETS: [&[u16]; {}] = [{}];",
         names.len(),
         names
             .iter()
             .map(|n| format!("&{n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        table,
+        "\n/// Whether `NETS[m]` holds shift-invariant nets: every cyclic shift of\n/// an entry's columns is a net too.\n#[rustfmt::skip]\npub(crate) static SHIFTED: [bool; {}] = [{}];",
+        shifted_flags.len(),
+        shifted_flags
+            .iter()
+            .map(ToString::to_string)
             .collect::<Vec<_>>()
             .join(", ")
     );
