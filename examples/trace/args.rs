@@ -23,6 +23,9 @@ unlit), motion (a moving sphere).
 
 Samplers: poisson-pixel, poisson-exact (a 1x1 exact-mode stream per
 pixel), independent, stratified, best-candidate, low-discrepancy, sobol-owen,
+net (the crate's NetPixelSampler; not in the default list), zsobol
+(pbrt-v4's ZSobol: Owen-scrambled Sobol' in Morton order), pmj02bn
+(pbrt-v4's PMJ02BN scheme on pmj02bn sets generated from the seed),
 poisson-exact-eliminate, poisson-exact-random (exact mode streamed over the
 whole image, ExactMethod::Eliminate or Random) (exact counts), and
 poisson-sweep (the crate's sweep, natural counts), poisson-joint (one 5-D
@@ -54,7 +57,7 @@ pub(crate) struct Args {
     /// Scenes to render [default: figure,dof,checker,motion]
     #[arg(long, value_name = "A,B,..", value_parser = scene_list)]
     pub(crate) scene: Option<List<String>>,
-    /// Samplers to compare [default: all twelve]
+    /// Samplers to compare [default: all but net]
     #[arg(long, value_name = "A,B,..", value_parser = sampler_list)]
     pub(crate) sampler: Option<List<String>>,
     /// Samples per pixel, each 1 to 4096
@@ -97,9 +100,12 @@ impl Args {
 
     /// The samplers asked for, or all of them.
     pub(crate) fn samplers(&self) -> Vec<String> {
-        self.sampler
-            .clone()
-            .unwrap_or_else(|| sources::names().into_iter().map(str::to_owned).collect())
+        self.sampler.clone().unwrap_or_else(|| {
+            sources::default_names()
+                .into_iter()
+                .map(str::to_owned)
+                .collect()
+        })
     }
 
     /// The thread count asked for, or the cores available.
@@ -168,7 +174,7 @@ mod tests {
     fn defaults_and_lists() {
         let args: Args = parse_line("trace", "").expect("no flags");
         assert_eq!(args.scenes(), SCENES, "every scene");
-        assert_eq!(args.samplers().len(), 12, "every sampler");
+        assert_eq!(args.samplers().len(), 14, "every sampler but net");
         assert_eq!(args.spp, [4, 16, 64], "spp");
         assert_eq!(args.size, [128, 128], "size");
         assert_eq!(
