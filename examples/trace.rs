@@ -38,6 +38,8 @@ mod common;
 mod font;
 #[path = "trace/geometry.rs"]
 mod geometry;
+#[path = "trace/metrics.rs"]
+mod metrics;
 #[path = "trace/render.rs"]
 mod render;
 #[path = "trace/report.rs"]

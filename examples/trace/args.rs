@@ -14,7 +14,9 @@ const ABOUT: &str = "\
 Renders the scenes of Ye's \"Implementing Bridson's Fast Poisson Disk Sampling
 in PBRT\" with every pixel sampler, and measures each render's error against
 a high-count reference: RMSE over --seeds seeds, split per pixel into bias^2
-and variance, with the sampling and render times. Prints a markdown table.";
+and variance, the RMSE after Gaussian blurs of 1 and 2 pixels, the error's
+low-frequency power over white noise's, and the sampling and render times.
+Prints a markdown table.";
 
 const AFTER: &str = "\
 Scenes: figure (a seated figure of analytic primitives under a quad light),
@@ -42,6 +44,10 @@ Outputs (with --out-dir): DIR/SCENE-SAMPLER-SPP.png (the first seed's render),
 DIR/montage-SCENE-SPP.png (samplers side by side, a magnified crop and a
 false-colour error map under each). --json FILE: {\"results\": [{\"scene\",
 \"sampler\", \"spp\", \"rmse\", \"rmse_sd\", \"bias2\", \"variance\",
+\"rmse_blur1\", \"rmse_blur1_sd\", \"rmse_blur2\", \"rmse_blur2_sd\" (the RMSE
+after a Gaussian blur of sigma 1 and 2 pixels), \"low_frequency_power\" (the
+error's periodogram below 0.125 cycles/pixel over its white-noise
+expectation, over 32x32 tiles and seeds; null below one tile),
 \"samples_per_pixel_min\", \"samples_per_pixel_max\", \"sample_seconds\",
 \"render_seconds\", \"seeds\"}, ..]}. Exit status: 0 success, 1 error writing
 an output, 2 bad arguments.

@@ -10,11 +10,14 @@ use std::path::Path;
 
 /// The markdown table of the results, with the RMSE at equal time: the
 /// RMSE a sampler would reach in the time `independent` takes at the same
-/// count, assuming its MSE falls as 1/time from where it was measured.
+/// count, assuming its MSE falls as 1/time from where it was measured;
+/// the RMSE after a Gaussian blur of σ = 1 and 2 pixels (σ2's spread over
+/// seeds beside it); and the error's low-frequency power over white
+/// noise's ("low f": 1 for white noise, below 1 for blue).
 pub(crate) fn table(rows: &[Row]) -> String {
     let mut out = String::from(
-        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | samples/pixel | sample s | render s | RMSE at equal time |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | blur σ1 | blur σ2 | ± sd | low f | samples/pixel | sample s | render s | RMSE at equal time |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for row in rows {
         let independent = rows
@@ -33,7 +36,7 @@ pub(crate) fn table(rows: &[Row]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
             row.scene,
             row.sampler,
             row.spp,
@@ -41,6 +44,11 @@ pub(crate) fn table(rows: &[Row]) -> String {
             num(e.map(|e| e.rmse_sd)),
             num(e.map(|e| e.bias2)),
             num(e.map(|e| e.variance)),
+            num(e.map(|e| e.blurred[0].0)),
+            num(e.map(|e| e.blurred[1].0)),
+            num(e.map(|e| e.blurred[1].1)),
+            e.and_then(|e| e.low_frequency)
+                .map_or_else(|| "-".to_owned(), |v| format!("{v:.3}")),
             row.sample_seconds,
             row.render_seconds,
             num(equal_time),
@@ -87,6 +95,11 @@ pub(crate) fn json(rows: &[Row]) -> Vec<serde_json::Value> {
                 "rmse_sd": e.map(|e| e.rmse_sd),
                 "bias2": e.map(|e| e.bias2),
                 "variance": e.map(|e| e.variance),
+                "rmse_blur1": e.map(|e| e.blurred[0].0),
+                "rmse_blur1_sd": e.map(|e| e.blurred[0].1),
+                "rmse_blur2": e.map(|e| e.blurred[1].0),
+                "rmse_blur2_sd": e.map(|e| e.blurred[1].1),
+                "low_frequency_power": e.and_then(|e| e.low_frequency),
                 "samples_per_pixel_min": row.samples_per_pixel[0],
                 "samples_per_pixel_max": row.samples_per_pixel[1],
                 "sample_seconds": row.sample_seconds,
