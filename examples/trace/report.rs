@@ -321,6 +321,41 @@ pub(crate) fn save(canvas: &Canvas, path: &Path) -> Result<(), Failure> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::study::Errors;
+
+    /// The table's rows have as many cells as its header, and the JSON
+    /// carries the blurred RMSE and the low-frequency power.
+    #[test]
+    fn table_and_json_carry_the_new_metrics() {
+        let row = Row {
+            scene: "checker".to_owned(),
+            sampler: "zsobol".to_owned(),
+            spp: 16,
+            errors: Some(Errors {
+                rmse: 0.03,
+                rmse_sd: 0.001,
+                bias2: 0.0,
+                variance: 0.0009,
+                blurred: [(0.009, 0.0005), (0.004, 0.0003)],
+                low_frequency: Some(0.8),
+            }),
+            samples_per_pixel: [16, 16],
+            sample_seconds: 0.1,
+            render_seconds: 0.2,
+            seeds: 4,
+        };
+        let text = table(std::slice::from_ref(&row));
+        let cells: Vec<usize> = text.lines().map(|l| l.matches('|').count()).collect();
+        assert!(cells.iter().all(|&c| c == cells[0]), "{text}");
+        assert!(
+            text.contains("| 9.000e-3 | 4.000e-3 | 3.000e-4 | 0.800 |"),
+            "{text}"
+        );
+        let value = &json(&[row])[0];
+        assert_eq!(value["rmse_blur1"], 0.009, "{value}");
+        assert_eq!(value["rmse_blur2_sd"], 0.0003, "{value}");
+        assert_eq!(value["low_frequency_power"], 0.8, "{value}");
+    }
 
     #[test]
     fn false_colour_runs_from_black_to_white() {

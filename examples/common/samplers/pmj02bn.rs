@@ -381,7 +381,7 @@ impl Sets {
 /// from the seed, so seeds differ in the film too. At most
 /// [`MAX_PMJ_SPP`] samples per pixel. The sets are made once per (seed,
 /// spp) and shared: 8 bank sets of `spp` points and, for powers of 4, the
-/// film set (about 0.1–0.3 s in an optimised build).
+/// film set: 0.24–0.32 s at 4, 16 and 64 spp in an optimised build.
 #[derive(Clone, Debug)]
 pub(crate) struct Pmj02bnSampler {
     cursor: Cursor,
