@@ -83,7 +83,11 @@ pub(crate) fn shuffle_index(code: u64, log2_spp: u32, key: u64) -> u64 {
     while shift < 32 + log2_spp {
         let digit = (code >> shift) & 3;
         let above = code.checked_shr(shift + 2).unwrap_or(0);
-        let h = hash(&[key, u64::from(shift), above]);
+        // One mix per digit of the key, the digit's place and the digits
+        // above it, folded so that no two (place, above) pairs collide
+        // (`shift < 64` takes 6 bits; `above < 2^(30 + m - shift)` fits in
+        // the other 58 for every `m <= 16`).
+        let h = mix(key ^ (above << 6 | u64::from(shift)));
         out |= permute4(digit, h >> 16) << shift;
         shift += 2;
     }
