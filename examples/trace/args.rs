@@ -48,6 +48,7 @@ false-colour error map under each). --json FILE: {\"results\": [{\"scene\",
 after a Gaussian blur of sigma 1 and 2 pixels), \"low_frequency_power\" (the
 error's periodogram below 0.125 cycles/pixel over its white-noise
 expectation, over 32x32 tiles and seeds; null below one tile),
+\"low_frequency_power_sd\" (its spread over seeds, each seed's own value),
 \"samples_per_pixel_min\", \"samples_per_pixel_max\", \"sample_seconds\",
 \"render_seconds\", \"seeds\"}, ..]}. Exit status: 0 success, 1 error writing
 an output, 2 bad arguments.

@@ -196,6 +196,23 @@ pub(crate) fn low_frequency_power(images: &[&Image], truth: &[f64], half: &[f64]
     (all > 0.0 && band > 0.0).then(|| (low / band) / (all / frequencies))
 }
 
+/// The spread of [`low_frequency_power`] over renders: the standard
+/// deviation (divisor K − 1) of each render's own value. `None` for fewer
+/// than two renders with a value.
+pub(crate) fn low_frequency_spread(images: &[&Image], truth: &[f64], half: &[f64]) -> Option<f64> {
+    let values: Vec<f64> = images
+        .iter()
+        .filter_map(|image| low_frequency_power(&[image], truth, half))
+        .collect();
+    if values.len() < 2 {
+        return None;
+    }
+    #[expect(clippy::cast_precision_loss, reason = "a seed count")]
+    let k = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / k;
+    Some((values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k - 1.0)).sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -270,6 +287,14 @@ mod tests {
         let refs: Vec<&Image> = white.iter().collect();
         let p = low_frequency_power(&refs, &truth, &half).expect("tiles");
         assert!((0.8..1.2).contains(&p), "white noise: {p}");
+        // One render's value over 4 tiles of about 45 low frequencies
+        // each: a spread of roughly 1/sqrt(180), far below 0.5.
+        let sd = low_frequency_spread(&refs, &truth, &half).expect("8 renders");
+        assert!((0.01..0.3).contains(&sd), "spread {sd}");
+        assert!(
+            low_frequency_spread(&refs[..1], &truth, &half).is_none(),
+            "one render"
+        );
         // A slow wave (period 40 pixels) under a little noise.
         let smooth: Vec<Image> = (0..4)
             .map(|s| {

@@ -13,11 +13,12 @@ use std::path::Path;
 /// count, assuming its MSE falls as 1/time from where it was measured;
 /// the RMSE after a Gaussian blur of σ = 1 and 2 pixels (σ2's spread over
 /// seeds beside it); and the error's low-frequency power over white
-/// noise's ("low f": 1 for white noise, below 1 for blue).
+/// noise's ("low f": 1 for white noise, below 1 for blue; its spread
+/// over seeds beside it).
 pub(crate) fn table(rows: &[Row]) -> String {
     let mut out = String::from(
-        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | blur σ1 | blur σ2 | ± sd | low f | samples/pixel | sample s | render s | RMSE at equal time |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | blur σ1 | blur σ2 | ± sd | low f | ± sd | samples/pixel | sample s | render s | RMSE at equal time |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for row in rows {
         let independent = rows
@@ -36,7 +37,7 @@ pub(crate) fn table(rows: &[Row]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
             row.scene,
             row.sampler,
             row.spp,
@@ -48,6 +49,8 @@ pub(crate) fn table(rows: &[Row]) -> String {
             num(e.map(|e| e.blurred[1].0)),
             num(e.map(|e| e.blurred[1].1)),
             e.and_then(|e| e.low_frequency)
+                .map_or_else(|| "-".to_owned(), |v| format!("{v:.3}")),
+            e.and_then(|e| e.low_frequency_sd)
                 .map_or_else(|| "-".to_owned(), |v| format!("{v:.3}")),
             row.sample_seconds,
             row.render_seconds,
@@ -100,6 +103,7 @@ pub(crate) fn json(rows: &[Row]) -> Vec<serde_json::Value> {
                 "rmse_blur2": e.map(|e| e.blurred[1].0),
                 "rmse_blur2_sd": e.map(|e| e.blurred[1].1),
                 "low_frequency_power": e.and_then(|e| e.low_frequency),
+                "low_frequency_power_sd": e.and_then(|e| e.low_frequency_sd),
                 "samples_per_pixel_min": row.samples_per_pixel[0],
                 "samples_per_pixel_max": row.samples_per_pixel[1],
                 "sample_seconds": row.sample_seconds,
@@ -338,6 +342,7 @@ mod tests {
                 variance: 0.0009,
                 blurred: [(0.009, 0.0005), (0.004, 0.0003)],
                 low_frequency: Some(0.8),
+                low_frequency_sd: Some(0.1),
             }),
             samples_per_pixel: [16, 16],
             sample_seconds: 0.1,

@@ -158,6 +158,9 @@ pub(crate) struct Errors {
     /// white-noise expectation ([`metrics::low_frequency_power`]): about 1
     /// for white noise, less for blue. `None` below one 32 × 32 tile.
     pub(crate) low_frequency: Option<f64>,
+    /// Its spread over seeds: the standard deviation of each seed's own
+    /// value ([`metrics::low_frequency_spread`]).
+    pub(crate) low_frequency_sd: Option<f64>,
 }
 
 /// The errors of `images` (K >= 2) against `reference`.
@@ -210,6 +213,7 @@ pub(crate) fn errors(images: &[&Image], reference: &Reference) -> Option<Errors>
         variance,
         blurred: metrics::BLUR_SIGMAS.map(|s| metrics::blurred_rmse(images, truth, half, s)),
         low_frequency: metrics::low_frequency_power(images, truth, half),
+        low_frequency_sd: metrics::low_frequency_spread(images, truth, half),
     })
 }
 
