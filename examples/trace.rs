@@ -18,8 +18,12 @@
 //! lens, the concentric mapping), `scene.rs` (textures, the quad light,
 //! shading, the four scenes), `sources.rs` (each sampler's samples),
 //! `render.rs` (the threaded render loop), `study.rs` (references and
-//! errors), `report.rs` (tables, JSON, PNGs, montages) and `args.rs`.
+//! errors), `metrics.rs` (blurred RMSE, low-frequency power), `report.rs`
+//! (tables, JSON, PNGs, montages) and `args.rs`.
 
+#[cfg(test)]
+#[path = "trace/anchors.rs"]
+mod anchors;
 #[path = "trace/args.rs"]
 mod args;
 #[path = "trace/camera.rs"]
@@ -34,6 +38,8 @@ mod common;
 mod font;
 #[path = "trace/geometry.rs"]
 mod geometry;
+#[path = "trace/metrics.rs"]
+mod metrics;
 #[path = "trace/render.rs"]
 mod render;
 #[path = "trace/report.rs"]

@@ -14,7 +14,9 @@ const ABOUT: &str = "\
 Renders the scenes of Ye's \"Implementing Bridson's Fast Poisson Disk Sampling
 in PBRT\" with every pixel sampler, and measures each render's error against
 a high-count reference: RMSE over --seeds seeds, split per pixel into bias^2
-and variance, with the sampling and render times. Prints a markdown table.";
+and variance, the RMSE after Gaussian blurs of 1 and 2 pixels, the error's
+low-frequency power over white noise's, and the sampling and render times.
+Prints a markdown table.";
 
 const AFTER: &str = "\
 Scenes: figure (a seated figure of analytic primitives under a quad light),
@@ -23,6 +25,9 @@ unlit), motion (a moving sphere).
 
 Samplers: poisson-pixel, poisson-exact (a 1x1 exact-mode stream per
 pixel), independent, stratified, best-candidate, low-discrepancy, sobol-owen,
+net (the crate's NetPixelSampler; not in the default list), zsobol
+(pbrt-v4's ZSobol: Owen-scrambled Sobol' in Morton order), pmj02bn
+(pbrt-v4's PMJ02BN scheme on pmj02bn sets generated from the seed),
 poisson-exact-eliminate, poisson-exact-random (exact mode streamed over the
 whole image, ExactMethod::Eliminate or Random) (exact counts), and
 poisson-sweep (the crate's sweep, natural counts), poisson-joint (one 5-D
@@ -39,6 +44,11 @@ Outputs (with --out-dir): DIR/SCENE-SAMPLER-SPP.png (the first seed's render),
 DIR/montage-SCENE-SPP.png (samplers side by side, a magnified crop and a
 false-colour error map under each). --json FILE: {\"results\": [{\"scene\",
 \"sampler\", \"spp\", \"rmse\", \"rmse_sd\", \"bias2\", \"variance\",
+\"rmse_blur1\", \"rmse_blur1_sd\", \"rmse_blur2\", \"rmse_blur2_sd\" (the RMSE
+after a Gaussian blur of sigma 1 and 2 pixels), \"low_frequency_power\" (the
+error's periodogram below 0.125 cycles/pixel over its white-noise
+expectation, over 32x32 tiles and seeds; null below one tile),
+\"low_frequency_power_sd\" (its spread over seeds, each seed's own value),
 \"samples_per_pixel_min\", \"samples_per_pixel_max\", \"sample_seconds\",
 \"render_seconds\", \"seeds\"}, ..]}. Exit status: 0 success, 1 error writing
 an output, 2 bad arguments.
@@ -54,7 +64,7 @@ pub(crate) struct Args {
     /// Scenes to render [default: figure,dof,checker,motion]
     #[arg(long, value_name = "A,B,..", value_parser = scene_list)]
     pub(crate) scene: Option<List<String>>,
-    /// Samplers to compare [default: all twelve]
+    /// Samplers to compare [default: all but net]
     #[arg(long, value_name = "A,B,..", value_parser = sampler_list)]
     pub(crate) sampler: Option<List<String>>,
     /// Samples per pixel, each 1 to 4096
@@ -97,9 +107,12 @@ impl Args {
 
     /// The samplers asked for, or all of them.
     pub(crate) fn samplers(&self) -> Vec<String> {
-        self.sampler
-            .clone()
-            .unwrap_or_else(|| sources::names().into_iter().map(str::to_owned).collect())
+        self.sampler.clone().unwrap_or_else(|| {
+            sources::default_names()
+                .into_iter()
+                .map(str::to_owned)
+                .collect()
+        })
     }
 
     /// The thread count asked for, or the cores available.
@@ -168,7 +181,7 @@ mod tests {
     fn defaults_and_lists() {
         let args: Args = parse_line("trace", "").expect("no flags");
         assert_eq!(args.scenes(), SCENES, "every scene");
-        assert_eq!(args.samplers().len(), 12, "every sampler");
+        assert_eq!(args.samplers().len(), 14, "every sampler but net");
         assert_eq!(args.spp, [4, 16, 64], "spp");
         assert_eq!(args.size, [128, 128], "size");
         assert_eq!(

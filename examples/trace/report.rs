@@ -10,11 +10,15 @@ use std::path::Path;
 
 /// The markdown table of the results, with the RMSE at equal time: the
 /// RMSE a sampler would reach in the time `independent` takes at the same
-/// count, assuming its MSE falls as 1/time from where it was measured.
+/// count, assuming its MSE falls as 1/time from where it was measured;
+/// the RMSE after a Gaussian blur of σ = 1 and 2 pixels (σ2's spread over
+/// seeds beside it); and the error's low-frequency power over white
+/// noise's ("low f": 1 for white noise, below 1 for blue; its spread
+/// over seeds beside it).
 pub(crate) fn table(rows: &[Row]) -> String {
     let mut out = String::from(
-        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | samples/pixel | sample s | render s | RMSE at equal time |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| scene | sampler | spp | RMSE | ± sd | bias² | variance | blur σ1 | blur σ2 | ± sd | low f | ± sd | samples/pixel | sample s | render s | RMSE at equal time |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for row in rows {
         let independent = rows
@@ -33,7 +37,7 @@ pub(crate) fn table(rows: &[Row]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {counts} | {:.3} | {:.3} | {} |",
             row.scene,
             row.sampler,
             row.spp,
@@ -41,6 +45,13 @@ pub(crate) fn table(rows: &[Row]) -> String {
             num(e.map(|e| e.rmse_sd)),
             num(e.map(|e| e.bias2)),
             num(e.map(|e| e.variance)),
+            num(e.map(|e| e.blurred[0].0)),
+            num(e.map(|e| e.blurred[1].0)),
+            num(e.map(|e| e.blurred[1].1)),
+            e.and_then(|e| e.low_frequency)
+                .map_or_else(|| "-".to_owned(), |v| format!("{v:.3}")),
+            e.and_then(|e| e.low_frequency_sd)
+                .map_or_else(|| "-".to_owned(), |v| format!("{v:.3}")),
             row.sample_seconds,
             row.render_seconds,
             num(equal_time),
@@ -87,6 +98,12 @@ pub(crate) fn json(rows: &[Row]) -> Vec<serde_json::Value> {
                 "rmse_sd": e.map(|e| e.rmse_sd),
                 "bias2": e.map(|e| e.bias2),
                 "variance": e.map(|e| e.variance),
+                "rmse_blur1": e.map(|e| e.blurred[0].0),
+                "rmse_blur1_sd": e.map(|e| e.blurred[0].1),
+                "rmse_blur2": e.map(|e| e.blurred[1].0),
+                "rmse_blur2_sd": e.map(|e| e.blurred[1].1),
+                "low_frequency_power": e.and_then(|e| e.low_frequency),
+                "low_frequency_power_sd": e.and_then(|e| e.low_frequency_sd),
                 "samples_per_pixel_min": row.samples_per_pixel[0],
                 "samples_per_pixel_max": row.samples_per_pixel[1],
                 "sample_seconds": row.sample_seconds,
@@ -308,6 +325,42 @@ pub(crate) fn save(canvas: &Canvas, path: &Path) -> Result<(), Failure> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::study::Errors;
+
+    /// The table's rows have as many cells as its header, and the JSON
+    /// carries the blurred RMSE and the low-frequency power.
+    #[test]
+    fn table_and_json_carry_the_new_metrics() {
+        let row = Row {
+            scene: "checker".to_owned(),
+            sampler: "zsobol".to_owned(),
+            spp: 16,
+            errors: Some(Errors {
+                rmse: 0.03,
+                rmse_sd: 0.001,
+                bias2: 0.0,
+                variance: 0.0009,
+                blurred: [(0.009, 0.0005), (0.004, 0.0003)],
+                low_frequency: Some(0.8),
+                low_frequency_sd: Some(0.1),
+            }),
+            samples_per_pixel: [16, 16],
+            sample_seconds: 0.1,
+            render_seconds: 0.2,
+            seeds: 4,
+        };
+        let text = table(std::slice::from_ref(&row));
+        let cells: Vec<usize> = text.lines().map(|l| l.matches('|').count()).collect();
+        assert!(cells.iter().all(|&c| c == cells[0]), "{text}");
+        assert!(
+            text.contains("| 9.000e-3 | 4.000e-3 | 3.000e-4 | 0.800 |"),
+            "{text}"
+        );
+        let value = &json(&[row])[0];
+        assert_eq!(value["rmse_blur1"], 0.009, "{value}");
+        assert_eq!(value["rmse_blur2_sd"], 0.0003, "{value}");
+        assert_eq!(value["low_frequency_power"], 0.8, "{value}");
+    }
 
     #[test]
     fn false_colour_runs_from_black_to_white() {

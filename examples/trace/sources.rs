@@ -42,14 +42,29 @@ pub(crate) const EXACT_STREAMED: [(&str, ExactMethod); 2] = [
 /// [`EXACT_STREAMED`].
 pub(crate) const NATURAL: [&str; 3] = ["poisson-sweep", "poisson-joint", "poisson-paper"];
 
-/// Every name `--sampler` accepts, in the study's order.
+/// Every name `--sampler` accepts, in the study's order: those of
+/// [`samplers::NAMES`] and [`samplers::EXTRA_NAMES`] (`net`, `zsobol`,
+/// `pmj02bn`), then the streamed and natural-count schemes.
 pub(crate) fn names() -> Vec<&'static str> {
     samplers::NAMES
         .iter()
+        .chain(&samplers::EXTRA_NAMES)
         .copied()
         .chain(EXACT_STREAMED.iter().map(|&(name, _)| name))
         .chain(NATURAL)
         .collect()
+}
+
+/// The samplers a study runs when `--sampler` is not given: every name
+/// but `net`, which is left out until it is measured in full.
+pub(crate) fn default_names() -> Vec<&'static str> {
+    names().into_iter().filter(|&n| n != "net").collect()
+}
+
+/// Whether `name` is drawn through the [`PixelSampler`] trait (one of
+/// `common::samplers`).
+fn is_trait_sampler(name: &str) -> bool {
+    samplers::NAMES.contains(&name) || samplers::EXTRA_NAMES.contains(&name)
 }
 
 /// The exact method of an [`EXACT_STREAMED`] sampler.
@@ -90,7 +105,7 @@ impl Recipe {
                 names().join(", ")
             ));
         }
-        if samplers::NAMES.contains(&name) {
+        if is_trait_sampler(name) {
             // Fail now, not in a render thread.
             samplers::by_name(name, spp, seed)?;
         } else if !(1..=bridson::MAX_SAMPLES_PER_PIXEL).contains(&spp) {
@@ -150,7 +165,7 @@ impl Recipe {
     /// # Errors
     /// A message if the sampler cannot be built.
     pub(crate) fn filler(&self) -> Result<PixelFiller, String> {
-        let sampler = if samplers::NAMES.contains(&self.name.as_str()) {
+        let sampler = if is_trait_sampler(&self.name) {
             Some(samplers::by_name(&self.name, self.spp, self.seed)?)
         } else {
             None

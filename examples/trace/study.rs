@@ -2,6 +2,7 @@
 //! and, per (scene, sampler, spp), the error of K renders against the
 //! reference, split per pixel into bias² and variance.
 
+use crate::metrics;
 use crate::render::{Image, Rendered, render};
 use crate::scene::Scene;
 use crate::sources::Recipe;
@@ -24,6 +25,10 @@ pub(crate) struct Reference {
     /// Per pixel, the squared half-difference of the halves: an unbiased
     /// estimate of the reference's own squared error there.
     pub(crate) own_squared_error: Vec<f64>,
+    /// Per pixel, the half-difference of the halves, `(a − b) / 2`: it has
+    /// the statistics of the reference's own error, so filtered (blurred,
+    /// transformed) it estimates the filtered reference error's power.
+    pub(crate) half_difference: Vec<f64>,
     /// Seconds spent rendering it (0 when read from the cache).
     pub(crate) seconds: f64,
 }
@@ -41,12 +46,13 @@ impl Reference {
             .zip(&b.values)
             .map(|(x, y)| 0.5 * (x + y))
             .collect();
-        let own_squared_error = a
+        let half_difference: Vec<f64> = a
             .values
             .iter()
             .zip(&b.values)
-            .map(|(x, y)| (0.5 * (x - y)).powi(2))
+            .map(|(x, y)| 0.5 * (x - y))
             .collect();
+        let own_squared_error = half_difference.iter().map(|d| d * d).collect();
         Self {
             spp,
             image: Image {
@@ -54,6 +60,7 @@ impl Reference {
                 ..a.clone()
             },
             own_squared_error,
+            half_difference,
             seconds,
         }
     }
@@ -143,6 +150,17 @@ pub(crate) struct Errors {
     pub(crate) bias2: f64,
     /// Per pixel, the variance over seeds (divisor K − 1); averaged.
     pub(crate) variance: f64,
+    /// The RMSE after a Gaussian blur of σ = 1 and 2 pixels
+    /// ([`metrics::BLUR_SIGMAS`]), the reference's own share taken off,
+    /// and the standard deviation over seeds of each seed's.
+    pub(crate) blurred: [(f64, f64); 2],
+    /// The error's periodogram power below a quarter of Nyquist over its
+    /// white-noise expectation ([`metrics::low_frequency_power`]): about 1
+    /// for white noise, less for blue. `None` below one 32 × 32 tile.
+    pub(crate) low_frequency: Option<f64>,
+    /// Its spread over seeds: the standard deviation of each seed's own
+    /// value ([`metrics::low_frequency_spread`]).
+    pub(crate) low_frequency_sd: Option<f64>,
 }
 
 /// The errors of `images` (K >= 2) against `reference`.
@@ -187,11 +205,15 @@ pub(crate) fn errors(images: &[&Image], reference: &Reference) -> Option<Errors>
         / (kf - 1.0))
         .sqrt();
     let (bias2, variance) = (mean(&bias2), mean(&variance));
+    let half = &reference.half_difference;
     Some(Errors {
         rmse: (bias2 + variance).max(0.0).sqrt(),
         rmse_sd: sd,
         bias2,
         variance,
+        blurred: metrics::BLUR_SIGMAS.map(|s| metrics::blurred_rmse(images, truth, half, s)),
+        low_frequency: metrics::low_frequency_power(images, truth, half),
+        low_frequency_sd: metrics::low_frequency_spread(images, truth, half),
     })
 }
 
@@ -290,6 +312,7 @@ mod tests {
             spp: 0,
             image: image(vec![1.0, 2.0]),
             own_squared_error: vec![0.0, 0.0],
+            half_difference: vec![0.0, 0.0],
             seconds: 0.0,
         };
         // Pixel 0: values 1 ± 1 (no bias, variance 2 with divisor K − 1 = 1);

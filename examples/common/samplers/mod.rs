@@ -29,16 +29,24 @@
 mod best_candidate;
 mod independent;
 mod low_discrepancy;
+mod pmj02bn;
 mod poisson_exact;
 mod sobol_owen;
 mod stratified;
+mod zsobol;
 
 pub(crate) use best_candidate::BestCandidateSampler;
 pub(crate) use independent::IndependentSampler;
 pub(crate) use low_discrepancy::LowDiscrepancySampler;
+pub(crate) use pmj02bn::Pmj02bnSampler;
+#[allow(unused_imports, reason = "for the tracer's tests of the anchors")]
+pub(crate) use pmj02bn::{CANDIDATES, pmj02bn};
 pub(crate) use poisson_exact::PoissonExactSampler;
 pub(crate) use sobol_owen::SobolOwenSampler;
 pub(crate) use stratified::StratifiedSampler;
+pub(crate) use zsobol::ZSobolSampler;
+#[allow(unused_imports, reason = "for the tracer's tests of the anchors")]
+pub(crate) use zsobol::shuffle_index;
 
 use bridson::{Error, NetPixelSampler, PixelSampler, PoissonPixelSampler};
 
@@ -55,8 +63,10 @@ pub(crate) const NAMES: [&str; 7] = [
 
 /// Samplers [`by_name`] also accepts, kept out of the default lists (and
 /// so out of the studies' committed runs) until they are measured in full:
-/// `net` is `bridson::NetPixelSampler`, at most 256 samples per pixel.
-pub(crate) const EXTRA_NAMES: [&str; 1] = ["net"];
+/// `net` is `bridson::NetPixelSampler`, at most 256 samples per pixel;
+/// `zsobol` and `pmj02bn` are pbrt-v4's two best samplers, the anchors of
+/// issue 51.
+pub(crate) const EXTRA_NAMES: [&str; 3] = ["net", "zsobol", "pmj02bn"];
 
 /// The sampler called `name` (one of [`NAMES`] or [`EXTRA_NAMES`]), with
 /// `spp` samples per pixel and `seed`.
@@ -72,6 +82,8 @@ pub(crate) fn by_name(name: &str, spp: u32, seed: u64) -> Result<Box<dyn PixelSa
         "best-candidate" => BestCandidateSampler::new(spp, seed).map(|s| Box::new(s) as _),
         "low-discrepancy" => LowDiscrepancySampler::new(spp, seed).map(|s| Box::new(s) as _),
         "sobol-owen" => SobolOwenSampler::new(spp, seed).map(|s| Box::new(s) as _),
+        "zsobol" => ZSobolSampler::new(spp, seed).map(|s| Box::new(s) as _),
+        "pmj02bn" => Pmj02bnSampler::new(spp, seed).map(|s| Box::new(s) as _),
         "poisson-exact" => PoissonExactSampler::new(spp, seed).map(|s| Box::new(s) as _),
         _ => {
             return Err(format!(
@@ -274,4 +286,30 @@ impl Cursor {
             u64::from(dimension),
         ])
     }
+}
+
+/// Whether `points` (`2^m` of them, in `[0, 1)²`) hold exactly one point in
+/// every elementary interval of area `2^-m` in base 2: a (0,m,2)-net.
+pub(crate) fn is_net(points: &[[f64; 2]]) -> bool {
+    let n = points.len();
+    if !n.is_power_of_two() {
+        return false;
+    }
+    let m = n.trailing_zeros();
+    (0..=m).all(|a| {
+        let mut seen = vec![false; n];
+        points.iter().all(|p| {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "in [0, 2^m) for values in [0, 1)"
+            )]
+            let (cx, cy) = (
+                ((p[0] * f64::from(1_u32 << a)) as usize).min((1 << a) - 1),
+                ((p[1] * f64::from(1_u32 << (m - a))) as usize).min((1 << (m - a)) - 1),
+            );
+            let cell = (cx << (m - a)) | cy;
+            !std::mem::replace(&mut seen[cell], true)
+        })
+    })
 }
