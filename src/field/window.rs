@@ -36,6 +36,8 @@ pub(crate) const MAX_LEVEL: u32 = 30;
 /// How many times a cell that no single disk covers is halved on every
 /// axis to prove that several disks together cover it (`union_covers`).
 const UNION_DEPTH: u32 = 2;
+/// Up to this dimension the rival scans use half-cell stencils.
+const HALF_STENCIL_DIMS: usize = 3;
 /// The last round. The process is settled long before in practice (see the
 /// module docs of `field`); the cap keeps a run finite on any input.
 pub(crate) const MAX_ROUNDS: u32 = LEVEL0_ROUNDS + MAX_LEVEL + 8;
@@ -64,6 +66,8 @@ struct Dart<const N: usize> {
     next: u32,
     /// Whether an input of its decision is unknown (outside the window).
     doubt: bool,
+    /// The half-cell of its level-0 cell it lies in (see `half_stencils`).
+    half: u8,
 }
 
 /// Whether dart `a` comes before dart `b` in the round's order when their
@@ -177,6 +181,11 @@ struct Window<'l, const N: usize> {
     /// Offsets to every level-0 cell that can hold a point within `r` of a
     /// point of the centre cell, nearest first, with their linear offsets.
     stencil: Vec<([i64; N], isize)>,
+    /// For a point in half-cell `k` of the centre cell (bit `a` of `k` set:
+    /// the upper half on axis `a`), the offsets of the stencil's cells that
+    /// can hold a point within `r` of it: about 2/3 of the stencil in 2-D
+    /// and 3/4 in 3-D.
+    half_stencils: Vec<Vec<([i64; N], isize)>>,
     reach: [i64; N],
     point_of: Vec<u32>,
     taint: Vec<bool>,
@@ -252,10 +261,22 @@ impl<const N: usize> Window<'_, N> {
     /// Calls `f` on every stencil slot around `rel`, nearest first, until
     /// it returns `false`.
     #[inline(always)]
-    fn each_slot(&self, rel: &[u32; N], mut f: impl FnMut(Slot) -> bool) {
+    fn each_slot(&self, rel: &[u32; N], f: impl FnMut(Slot) -> bool) {
+        self.each_slot_of(&self.stencil, rel, f);
+    }
+
+    /// Calls `f` on every slot of `stencil` around `rel`, in its order,
+    /// until it returns `false`.
+    #[inline(always)]
+    fn each_slot_of(
+        &self,
+        stencil: &[([i64; N], isize)],
+        rel: &[u32; N],
+        mut f: impl FnMut(Slot) -> bool,
+    ) {
         if self.interior(rel) {
             let base = self.lin(rel);
-            for &(_, off) in &self.stencil {
+            for &(_, off) in stencil {
                 #[expect(clippy::cast_sign_loss, reason = "interior: in range")]
                 let at = base.wrapping_add(off as usize);
                 if !f(Slot::Cell(at)) {
@@ -263,7 +284,7 @@ impl<const N: usize> Window<'_, N> {
                 }
             }
         } else {
-            for (d, _) in &self.stencil {
+            for (d, _) in stencil {
                 if !f(self.slot(rel, d)) {
                     return;
                 }
@@ -448,13 +469,43 @@ pub(crate) fn run<const N: usize>(
         }
     }
     stencil.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let stencil = stencil.into_iter().map(|(_, d, o)| (d, o)).collect();
+    let stencil: Vec<([i64; N], isize)> = stencil.into_iter().map(|(_, d, o)| (d, o)).collect();
+    // The half-cell stencils: cells whose box comes within r of the half
+    // cell (in cell units `[b/2, (b+1)/2]` per axis, widened far beyond
+    // rounding), in the stencil's order.
+    // Above 3-D the whole stencil serves every half (2^N lists would cost
+    // more memory than the scans save).
+    let half_stencils: Vec<Vec<([i64; N], isize)>> = if N > HALF_STENCIL_DIMS {
+        vec![stencil.clone()]
+    } else {
+        (0..1usize << N)
+            .map(|k| {
+                stencil
+                    .iter()
+                    .filter(|(d, _)| {
+                        let mut gap2 = 0.0;
+                        for (axis, &off) in d.iter().enumerate() {
+                            let b = f64::from(u8::from((k >> axis) & 1 == 1));
+                            let (qlo, qhi) = (0.5 * b - 1e-6, 0.5 * (b + 1.0) + 1e-6);
+                            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+                            let (clo, chi) = (off as f64, off as f64 + 1.0);
+                            let gap = (clo - qhi).max(qlo - chi).max(0.0) * lat.side[axis];
+                            gap2 += gap * gap;
+                        }
+                        gap2 < r2 * (1.0 + 1e-9)
+                    })
+                    .copied()
+                    .collect()
+            })
+            .collect()
+    };
     let mut w = Window {
         lat,
         r2,
         axes,
         stride,
         stencil,
+        half_stencils,
         reach,
         point_of: vec![NONE; total],
         taint: vec![false; total],
@@ -520,9 +571,13 @@ pub(crate) fn run<const N: usize>(
             let c = w.canonical(&cell.rel);
             let key = dart_key(seed, &c, &cell.sub, level, round);
             let mut x = [0.0; N];
+            let mut half = 0u8;
             for axis in 0..N {
                 let t = (f64::from(cell.sub[axis]) + unit(word(key, 1 + axis as u64))) * scale;
                 x[axis] = lat.coord(axis, c[axis], t);
+                if N <= HALF_STENCIL_DIMS && t >= 0.5 {
+                    half |= 1 << axis;
+                }
             }
             if !lat.inside(&x) {
                 continue;
@@ -549,6 +604,7 @@ pub(crate) fn run<const N: usize>(
                 cell: cell_lin,
                 next: w.dart_head[at],
                 doubt: unknown,
+                half,
             });
             w.dart_head[at] = index;
         }
@@ -582,10 +638,11 @@ pub(crate) fn run<const N: usize>(
                 }
                 let i = iu as usize;
                 let (prio, x, rel) = (darts[i].prio, pos[i], darts[i].rel);
+                let around = &w.half_stencils[usize::from(darts[i].half)];
                 let mut lost = false;
                 let mut wait = NONE;
                 let mut doubt = darts[i].doubt;
-                w.each_slot(&rel, |s| {
+                w.each_slot_of(around, &rel, |s| {
                     if let Slot::Cell(at) = s {
                         let mut j = w.dart_head[at];
                         while j != NONE {
