@@ -15,16 +15,22 @@
 //!   cell, sub-cell, level, round): SplitMix64's finaliser, integer
 //!   operations only, and `f64` arithmetic limited to `+ - × ÷`, so a dart
 //!   has the same bits on every machine.
-//! - **Acceptance.** A dart is a *candidate* if no point of an earlier
-//!   round lies within `r`; a candidate becomes a point if its priority is
-//!   above every other candidate of its round within `r` (Luby's rule; with
-//!   the order of priorities fixed by the hash, no schedule can change the
-//!   outcome: Xiang Ying et al. 2013, Blelloch, Fineman & Shun 2012).
+//! - **Acceptance.** Each round is greedy in priority order: as if its
+//!   darts were thrown one by one from the highest priority down, a dart
+//!   becomes a point if no point (of an earlier round, or kept before it in
+//!   this one) lies within `r`. So the whole set is random sequential
+//!   adsorption in the order (round, priority). With that order fixed by
+//!   the hash, no schedule can change the outcome (Xiang Ying et al. 2013;
+//!   Blelloch, Fineman & Shun 2012, whose rounds of local maxima a window
+//!   runs until the round is decided).
 //! - **Refinement.** Two rounds run at level 0; from then on each round
 //!   first splits every live cell into its `2^N` halves and drops those
-//!   that a single disk of radius `r` covers (Ebeida et al. 2012), so the
-//!   darts go where space is left. The process ends when no cell is live:
-//!   every point of the domain is then within `r` of a point (maximal).
+//!   that a single disk of radius `r` covers (Ebeida et al. 2012), or that
+//!   several disks together are proved to cover by halving it twice on
+//!   every axis, so the darts go where space is left. Dropping a covered
+//!   cell never changes the points (no dart in it could be kept), only the
+//!   work. The process ends when no cell is live: every point of the
+//!   domain is then within `r` of a point (maximal).
 //!   Levels stop at 30 (cells `2^-30` of a level-0 cell), rounds at 40; in
 //!   measured runs the last live cell goes at level 13 to 18.
 //!
@@ -41,19 +47,19 @@
 //! exactly, whatever the halo: only the cost depends on it.
 //!
 //! The halo a box needs is bounded with high probability and does not grow
-//! with the set: unknowns spread about two cells per round and only
-//! through cells that are still live, which thin out geometrically. In
-//! 2-D, over 300 boxes of `16r`, the least halo that settles a box is 7 to
-//! 14 cells (5 to 10 `r`), median 10; queries start at 16 cells, which
-//! settled all of them.
+//! with the set: within a round unknowns spread only along chains of darts
+//! within `r` of one another, each outranking the next, which are short,
+//! and from round to round only through cells that are still live, which
+//! thin out geometrically. In 2-D, over 300 boxes of `16r`, the least halo
+//! that settles a box is 7 to 12 cells (5 to 8.5 `r`), median 9; queries
+//! start at 13 cells in 2-D and 20 in 3-D (14 to 18 measured, median 16).
 //!
 //! # Cost
 //! Work and memory are linear in the window's cells: about 3.3 level-0
-//! cells and 10 live-cell rounds per point in 2-D, 8.7 cells and about 77
-//! in 3-D, where single balls cover few cells. A chunk of side `c` pays
-//! for `(c + 2h)^N` cells. The stencil of neighbour cells holds 21 cells in
-//! 2-D, 125 in 3-D and `5^N` up to 4-D, and every live cell splits into
-//! `2^N`, so the field is practical to about 4-D; the lattice and the
+//! cells and 6.5 live-cell rounds per point in 2-D, 8.7 cells and about 23
+//! in 3-D. A chunk of side `c` pays for `(c + 2h)^N` cells. The stencil of
+//! neighbour cells holds 25 cells in 2-D, 125 in 3-D and 841 in 4-D, and
+//! every live cell splits into `2^N`, so the field is practical to about 4-D; the lattice and the
 //! proofs hold in any `N`. `docs/field.md` has the measured figures.
 //!
 //! # Not yet
@@ -83,8 +89,17 @@ const MIN_RADIUS: f64 = 1e-150;
 const MAX_RADIUS: f64 = 1e150;
 
 /// The halo a query starts with, in level-0 cells on each side; it doubles
-/// until the answer is settled.
-pub(crate) const START_HALO: i64 = 16;
+/// until the answer is settled. Measured over boxes of `16r`, the least
+/// halo that settles a box is at most 12 cells in 2-D (300 boxes) and 14
+/// to 18 in 3-D (100 boxes); a retry doubles the window's side, so the
+/// start sits just above those. It never changes the points.
+pub(crate) const fn start_halo(n: usize) -> i64 {
+    match n {
+        2 => 13,
+        3 => 20,
+        _ => 16,
+    }
+}
 
 /// The default memory budget of one window: 1 GiB.
 pub const DEFAULT_MAX_WINDOW_CELLS_BYTES: u64 = 1 << 30;
@@ -109,12 +124,12 @@ const fn bytes_per_cell(n: usize) -> u64 {
 /// the box's lower corner (a whole number of cells per period on a
 /// periodic axis) or, unbounded, from the absolute origin, so the lattice
 /// depends only on `r`. The set is made in rounds. In each round every
-/// *live* cell (one not yet covered by a single disk of radius `r` around a
-/// point) gets one dart, its position and priority a hash of (seed, cell,
-/// level, round). A dart becomes a point if no earlier point lies within
-/// `r` and it has the highest priority among the round's surviving darts
-/// within `r` (Luby's rule, as in Xiang Ying et al. 2013; the schedule
-/// cannot change the outcome). After two rounds at level 0, each round
+/// *live* cell (one not yet proved covered by the disks of radius `r`
+/// around the points) gets one dart, its position and priority a hash of
+/// (seed, cell, level, round). Within a round the darts are taken greedily
+/// from the highest priority down: a dart becomes a point if no point lies
+/// within `r` (random sequential adsorption in a hashed order, as in Xiang
+/// Ying et al. 2013; the schedule cannot change the outcome). After two rounds at level 0, each round
 /// first splits every live cell into `2^N` halves and drops those a point
 /// covers (Ebeida et al. 2012), so the darts go where space is left, until
 /// no cell is live: the set is then maximal.
@@ -298,7 +313,7 @@ impl<const N: usize> Field<N> {
             .lattice
             .cells_of(&lo, &hi)
             .ok_or(Error::BoxTooWide { axis: 0 })?;
-        let mut halo = START_HALO;
+        let mut halo = start_halo(N);
         loop {
             self.check_window(&qa, &qb, halo)?;
             let run = window::run(&self.lattice, self.radius, self.seed, &qa, &qb, halo);

@@ -19,19 +19,25 @@ use super::lattice::{Axis, Lattice};
 /// No point, no dart: the empty slot of a grid.
 const NONE: u32 = u32::MAX;
 
-/// A dart's state in its round.
+/// A dart's state in its round: within `r` of a point.
 const REJECTED: u8 = 0;
-/// Clear of every known point; its cell certainly live.
-const CANDIDATE: u8 = 1;
-/// Might be a candidate: an input of its decision is unknown.
+/// Might be kept or not: an input of its decision is unknown.
 const UNKNOWN: u8 = 2;
-/// Kept: a candidate that beats every rival within `r`.
+/// Kept: no point, and no kept dart of its round that outranks it, lies
+/// within `r`.
 const ACCEPTED: u8 = 3;
+/// Not yet decided: a rival within `r` that outranks it is undecided.
+const PENDING: u8 = 4;
 
 /// Rounds thrown at level 0 before cells start to split.
 pub(crate) const LEVEL0_ROUNDS: u32 = 2;
 /// The deepest level: cells `2^-MAX_LEVEL` of a level-0 cell on a side.
 pub(crate) const MAX_LEVEL: u32 = 30;
+/// How many times a cell that no single disk covers is halved on every
+/// axis to prove that several disks together cover it (`union_covers`).
+const UNION_DEPTH: u32 = 2;
+/// Up to this dimension the rival scans use half-cell stencils.
+const HALF_STENCIL_DIMS: usize = 3;
 /// The last round. The process is settled long before in practice (see the
 /// module docs of `field`); the cap keeps a run finite on any input.
 pub(crate) const MAX_ROUNDS: u32 = LEVEL0_ROUNDS + MAX_LEVEL + 8;
@@ -43,6 +49,10 @@ struct Live<const N: usize> {
     rel: [u32; N],
     sub: [u32; N],
     unknown: bool,
+    /// The points that may lie within `r` of the cell: `near[a..a + n]`
+    /// of the round's list, shared by the live cells of one level-0 cell.
+    near_at: u32,
+    near_len: u32,
 }
 
 /// One dart of a round.
@@ -54,7 +64,20 @@ struct Dart<const N: usize> {
     rel: [u32; N],
     cell: u32,
     next: u32,
-    status: u8,
+    /// Whether an input of its decision is unknown (outside the window).
+    doubt: bool,
+    /// The half-cell of its level-0 cell it lies in (see `half_stencils`).
+    half: u8,
+}
+
+/// Whether dart `a` comes before dart `b` in the round's order when their
+/// priorities tie: by key, then by position (distinct darts differ).
+fn outranks<const N: usize>(a: &Dart<N>, b: &Dart<N>) -> bool {
+    if a.prio != b.prio {
+        return a.prio > b.prio;
+    }
+    let bits = |d: &Dart<N>| d.x.map(f64::to_bits);
+    bits(a) > bits(b)
 }
 
 /// Where a stencil offset from a cell lands.
@@ -158,12 +181,19 @@ struct Window<'l, const N: usize> {
     /// Offsets to every level-0 cell that can hold a point within `r` of a
     /// point of the centre cell, nearest first, with their linear offsets.
     stencil: Vec<([i64; N], isize)>,
+    /// For a point in half-cell `k` of the centre cell (bit `a` of `k` set:
+    /// the upper half on axis `a`), the offsets of the stencil's cells that
+    /// can hold a point within `r` of it: about 2/3 of the stencil in 2-D
+    /// and 3/4 in 3-D.
+    half_stencils: Vec<Vec<([i64; N], isize)>>,
     reach: [i64; N],
     point_of: Vec<u32>,
     taint: Vec<bool>,
     dart_head: Vec<u32>,
     points: Vec<[f64; N]>,
     point_cell: Vec<u32>,
+    /// Whether some axis is periodic (distances then wrap).
+    periodic: bool,
 }
 
 impl<const N: usize> Window<'_, N> {
@@ -231,10 +261,22 @@ impl<const N: usize> Window<'_, N> {
     /// Calls `f` on every stencil slot around `rel`, nearest first, until
     /// it returns `false`.
     #[inline(always)]
-    fn each_slot(&self, rel: &[u32; N], mut f: impl FnMut(Slot) -> bool) {
+    fn each_slot(&self, rel: &[u32; N], f: impl FnMut(Slot) -> bool) {
+        self.each_slot_of(&self.stencil, rel, f);
+    }
+
+    /// Calls `f` on every slot of `stencil` around `rel`, in its order,
+    /// until it returns `false`.
+    #[inline(always)]
+    fn each_slot_of(
+        &self,
+        stencil: &[([i64; N], isize)],
+        rel: &[u32; N],
+        mut f: impl FnMut(Slot) -> bool,
+    ) {
         if self.interior(rel) {
             let base = self.lin(rel);
-            for &(_, off) in &self.stencil {
+            for &(_, off) in stencil {
                 #[expect(clippy::cast_sign_loss, reason = "interior: in range")]
                 let at = base.wrapping_add(off as usize);
                 if !f(Slot::Cell(at)) {
@@ -242,7 +284,7 @@ impl<const N: usize> Window<'_, N> {
                 }
             }
         } else {
-            for (d, _) in &self.stencil {
+            for (d, _) in stencil {
                 if !f(self.slot(rel, d)) {
                     return;
                 }
@@ -275,25 +317,86 @@ impl<const N: usize> Window<'_, N> {
         (lo, hi)
     }
 
-    /// Whether point `p` covers the box `[lo, hi]` (every corner within
-    /// `r`, with a margin far above rounding).
-    fn covers(&self, p: &[f64; N], lo: &[f64; N], hi: &[f64; N]) -> bool {
+    /// Distance squared, as [`Lattice::dist2`], with a fast path when no
+    /// axis is periodic (the same operations, so the same bits).
+    #[inline(always)]
+    fn dist2(&self, a: &[f64; N], b: &[f64; N]) -> f64 {
+        if self.periodic {
+            return self.lat.dist2(a, b);
+        }
         let mut s = 0.0;
         for axis in 0..N {
-            let mut q = p[axis];
-            if let Axis::Periodic { lo: l, hi: h, .. } = self.lat.axes[axis] {
-                let period = h - l;
-                let centre = 0.5 * (lo[axis] + hi[axis]);
-                if q - centre > 0.5 * period {
-                    q -= period;
-                } else if centre - q > 0.5 * period {
-                    q += period;
+            let d = (a[axis] - b[axis]).abs();
+            s += d * d;
+        }
+        s
+    }
+
+    /// Coordinate `axis` of `p`, moved by a period on a periodic axis to
+    /// the image nearest `centre`.
+    #[inline(always)]
+    fn image(&self, p: &[f64; N], axis: usize, centre: f64) -> f64 {
+        let mut q = p[axis];
+        if let Axis::Periodic { lo: l, hi: h, .. } = self.lat.axes[axis] {
+            let period = h - l;
+            if q - centre > 0.5 * period {
+                q -= period;
+            } else if centre - q > 0.5 * period {
+                q += period;
+            }
+        }
+        q
+    }
+
+    /// Whether the disks around the points `near` together cover the box
+    /// `[lo, hi]`, proved by splitting it in halves on every axis down to
+    /// `depth` times until each piece lies in one disk. `false` means not
+    /// proved: the box may still be covered. Dropping a covered cell never
+    /// changes the points (no dart in it could ever be kept), only the work.
+    fn union_covers(&self, lo: &[f64; N], hi: &[f64; N], near: &[u32], depth: u32) -> bool {
+        let mut kept = [0u32; 32];
+        let mut n = 0;
+        let inner = self.r2 * (1.0 - 1e-12);
+        let outer = self.r2 * (1.0 + 1e-9);
+        for &p in near {
+            let x = &self.points[p as usize];
+            // Farthest and nearest points of the box from `x`, squared.
+            let (mut far2, mut gap2) = (0.0, 0.0);
+            for axis in 0..N {
+                let q = if self.periodic {
+                    self.image(x, axis, 0.5 * (lo[axis] + hi[axis]))
+                } else {
+                    x[axis]
+                };
+                let far = (q - lo[axis]).abs().max((hi[axis] - q).abs());
+                let gap = (lo[axis] - q).max(q - hi[axis]).max(0.0);
+                far2 += far * far;
+                gap2 += gap * gap;
+            }
+            if far2 <= inner {
+                return true;
+            }
+            if gap2 <= outer && n < kept.len() {
+                kept[n] = p;
+                n += 1;
+            }
+        }
+        if depth == 0 || n < 2 {
+            return false;
+        }
+        let kept = &kept[..n];
+        let mid: [f64; N] = core::array::from_fn(|a| 0.5 * (lo[a] + hi[a]));
+        (0..1u32 << N).all(|k| {
+            let (mut a, mut b) = (*lo, *hi);
+            for axis in 0..N {
+                if (k >> axis) & 1 == 0 {
+                    b[axis] = mid[axis];
+                } else {
+                    a[axis] = mid[axis];
                 }
             }
-            let far = (q - lo[axis]).abs().max((hi[axis] - q).abs());
-            s += far * far;
-        }
-        s <= self.r2 * (1.0 - 1e-12)
+            self.union_covers(&a, &b, kept, depth - 1)
+        })
     }
 }
 
@@ -366,19 +469,50 @@ pub(crate) fn run<const N: usize>(
         }
     }
     stencil.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let stencil = stencil.into_iter().map(|(_, d, o)| (d, o)).collect();
+    let stencil: Vec<([i64; N], isize)> = stencil.into_iter().map(|(_, d, o)| (d, o)).collect();
+    // The half-cell stencils: cells whose box comes within r of the half
+    // cell (in cell units `[b/2, (b+1)/2]` per axis, widened far beyond
+    // rounding), in the stencil's order.
+    // Above 3-D the whole stencil serves every half (2^N lists would cost
+    // more memory than the scans save).
+    let half_stencils: Vec<Vec<([i64; N], isize)>> = if N > HALF_STENCIL_DIMS {
+        vec![stencil.clone()]
+    } else {
+        (0..1usize << N)
+            .map(|k| {
+                stencil
+                    .iter()
+                    .filter(|(d, _)| {
+                        let mut gap2 = 0.0;
+                        for (axis, &off) in d.iter().enumerate() {
+                            let b = f64::from(u8::from((k >> axis) & 1 == 1));
+                            let (qlo, qhi) = (0.5 * b - 1e-6, 0.5 * (b + 1.0) + 1e-6);
+                            #[expect(clippy::cast_precision_loss, reason = "small offsets")]
+                            let (clo, chi) = (off as f64, off as f64 + 1.0);
+                            let gap = (clo - qhi).max(qlo - chi).max(0.0) * lat.side[axis];
+                            gap2 += gap * gap;
+                        }
+                        gap2 < r2 * (1.0 + 1e-9)
+                    })
+                    .copied()
+                    .collect()
+            })
+            .collect()
+    };
     let mut w = Window {
         lat,
         r2,
         axes,
         stride,
         stencil,
+        half_stencils,
         reach,
         point_of: vec![NONE; total],
         taint: vec![false; total],
         dart_head: vec![NONE; total],
         points: Vec::new(),
         point_cell: Vec::new(),
+        periodic: lat.axes.iter().any(|a| matches!(a, Axis::Periodic { .. })),
     };
 
     // Round 0: every level-0 cell of the window is live.
@@ -409,10 +543,24 @@ pub(crate) fn run<const N: usize>(
             rel,
             sub: [0; N],
             unknown,
+            near_at: 0,
+            near_len: 0,
         });
     }
     let mut darts: Vec<Dart<N>> = Vec::new();
+    let mut rank: Vec<u64> = Vec::new();
+    let mut link: Vec<u32> = Vec::new();
+    let mut pos: Vec<[f64; N]> = Vec::new();
+    let mut state: Vec<u8> = Vec::new();
     let mut outcome: Vec<u8> = Vec::new();
+    // Each round's lists of points near live cells (see `Live::near_at`).
+    let mut near_pool: Vec<u32> = Vec::new();
+    let mut next_pool: Vec<u32> = Vec::new();
+    let half0: f64 = lat.side.iter().map(|s| 0.25 * s * s).sum();
+    let reach0 = {
+        let reach = radius + half0.sqrt();
+        reach * reach * (1.0 + 1e-9)
+    };
     let mut level = 0u32;
     let mut round = 0u32;
     loop {
@@ -423,37 +571,27 @@ pub(crate) fn run<const N: usize>(
             let c = w.canonical(&cell.rel);
             let key = dart_key(seed, &c, &cell.sub, level, round);
             let mut x = [0.0; N];
+            let mut half = 0u8;
             for axis in 0..N {
                 let t = (f64::from(cell.sub[axis]) + unit(word(key, 1 + axis as u64))) * scale;
                 x[axis] = lat.coord(axis, c[axis], t);
+                if N <= HALF_STENCIL_DIMS && t >= 0.5 {
+                    half |= 1 << axis;
+                }
             }
             if !lat.inside(&x) {
                 continue;
             }
-            let mut rejected = false;
-            let mut unknown = cell.unknown;
-            let nothing_near = w.points.is_empty() && !cut;
-            w.each_slot(&cell.rel, |s| {
-                if nothing_near {
-                    return false;
-                }
-                match s {
-                    Slot::Cell(at) => {
-                        let p = w.point_of[at];
-                        if p != NONE && lat.dist2(&x, &w.points[p as usize]) < r2 {
-                            rejected = true;
-                            return false;
-                        }
-                        unknown |= w.taint[at];
-                    }
-                    Slot::Outer => unknown = true,
-                    Slot::Empty => {}
-                }
-                true
-            });
-            if rejected {
+            // The split before this round gathered every point that may
+            // lie within `r` of the cell, and every unknown around it.
+            let near = &near_pool[cell.near_at as usize..(cell.near_at + cell.near_len) as usize];
+            if near
+                .iter()
+                .any(|&p| w.dist2(&x, &w.points[p as usize]) < r2)
+            {
                 continue;
             }
+            let unknown = cell.unknown;
             let at = w.lin(&cell.rel);
             #[expect(clippy::cast_possible_truncation, reason = "darts < cells < 2^32")]
             let index = darts.len() as u32;
@@ -465,44 +603,86 @@ pub(crate) fn run<const N: usize>(
                 rel: cell.rel,
                 cell: cell_lin,
                 next: w.dart_head[at],
-                status: if unknown { UNKNOWN } else { CANDIDATE },
+                doubt: unknown,
+                half,
             });
             w.dart_head[at] = index;
         }
-        // Each dart against its rivals of the round within r.
-        outcome.clear();
-        for (i, dart) in darts.iter().enumerate() {
-            let rel = dart.rel;
-            let mut lost = false;
-            let mut doubt = dart.status == UNKNOWN;
-            w.each_slot(&rel, |s| {
-                if let Slot::Cell(at) = s {
-                    let mut j = w.dart_head[at];
-                    while j != NONE {
-                        let rival = &darts[j as usize];
-                        if j as usize != i
-                            && rival.prio >= dart.prio
-                            && lat.dist2(&rival.x, &dart.x) < r2
-                        {
-                            if rival.status == CANDIDATE {
-                                lost = true;
-                                return false;
-                            }
-                            doubt = true;
-                        }
-                        j = rival.next;
-                    }
+        // Greedy in priority order, as if the round's darts were thrown one
+        // by one from the highest priority down: a dart is kept if no kept
+        // dart that outranks it lies within r. That order is fixed by the
+        // hash, so the result is the same for any schedule. Computed in
+        // sweeps in the darts' (spatial) order: a dart is decided once every
+        // rival within r that outranks it is decided; each decision is final
+        // and seen at once by the rest of the sweep. The priorities,
+        // positions and states sit in arrays of their own, so that the scan
+        // past rivals touches few cache lines.
+        rank.clear();
+        rank.extend(darts.iter().map(|d| d.prio.0));
+        link.clear();
+        link.extend(darts.iter().map(|d| d.next));
+        pos.clear();
+        pos.extend(darts.iter().map(|d| d.x));
+        state.clear();
+        state.resize(darts.len(), PENDING);
+        #[expect(clippy::cast_possible_truncation, reason = "darts < cells < 2^32")]
+        let mut pending: Vec<(u32, u32)> = (0..darts.len() as u32).map(|i| (i, NONE)).collect();
+        let mut still = Vec::new();
+        while !pending.is_empty() {
+            still.clear();
+            for &(iu, blocker) in &pending {
+                // Still waiting on the rival that held it last time.
+                if blocker != NONE && state[blocker as usize] == PENDING {
+                    still.push((iu, blocker));
+                    continue;
                 }
-                true
-            });
-            outcome.push(if lost {
-                REJECTED
-            } else if doubt {
-                UNKNOWN
-            } else {
-                ACCEPTED
-            });
+                let i = iu as usize;
+                let (prio, x, rel) = (darts[i].prio, pos[i], darts[i].rel);
+                let around = &w.half_stencils[usize::from(darts[i].half)];
+                let mut lost = false;
+                let mut wait = NONE;
+                let mut doubt = darts[i].doubt;
+                w.each_slot_of(around, &rel, |s| {
+                    if let Slot::Cell(at) = s {
+                        let mut j = w.dart_head[at];
+                        while j != NONE {
+                            let ju = j as usize;
+                            let st = state[ju];
+                            if st != REJECTED
+                                && rank[ju] >= prio.0
+                                && ju != i
+                                && w.dist2(&pos[ju], &x) < r2
+                                && (rank[ju] > prio.0 || outranks(&darts[ju], &darts[i]))
+                            {
+                                match st {
+                                    ACCEPTED => {
+                                        lost = true;
+                                        return false;
+                                    }
+                                    PENDING => wait = j,
+                                    _ => doubt = true,
+                                }
+                            }
+                            j = link[ju];
+                        }
+                    }
+                    true
+                });
+                state[i] = if lost {
+                    REJECTED
+                } else if wait != NONE {
+                    still.push((iu, wait));
+                    PENDING
+                } else if doubt {
+                    UNKNOWN
+                } else {
+                    ACCEPTED
+                };
+            }
+            core::mem::swap(&mut pending, &mut still);
         }
+        outcome.clear();
+        outcome.extend_from_slice(&state);
         for (dart, &out) in darts.iter().zip(&outcome) {
             let at = dart.cell as usize;
             w.dart_head[at] = NONE;
@@ -532,32 +712,45 @@ pub(crate) fn run<const N: usize>(
         let next_level = if split { level + 1 } else { level };
         let mut next = Vec::with_capacity(if split { live.len() } else { 0 });
         let mut query_live = false;
-        let mut near: Vec<u32> = Vec::new();
+        next_pool.clear();
+        // The level-0 cell whose neighbours were gathered last: its points
+        // `next_pool[group..]` and whether an unknown lies around it.
+        let mut group_rel: Option<[u32; N]> = None;
+        let (mut group_at, mut group_unknown) = (0usize, false);
         for cell in &live {
-            let c = w.canonical(&cell.rel);
-            // The points and unknowns around the level-0 cell, once for all
-            // of its children.
-            near.clear();
-            let mut unknown = cell.unknown;
-            // Every child has the cell's centre as a corner (and an unsplit
-            // cell contains it), so only points within `r` of the centre
-            // can cover one.
-            let (clo, chi) = w.sub_box(&c, &cell.sub, level);
-            let centre: [f64; N] = core::array::from_fn(|a| 0.5 * (clo[a] + chi[a]));
-            w.each_slot(&cell.rel, |slot| {
-                match slot {
-                    Slot::Cell(at) => {
-                        let p = w.point_of[at];
-                        if p != NONE && lat.dist2(&w.points[p as usize], &centre) <= r2 {
-                            near.push(p);
+            // A point in the level-0 cell covers all of it (its diagonal is
+            // under r): none of its sub-cells is live.
+            if w.point_of[w.lin(&cell.rel)] != NONE {
+                continue;
+            }
+            if group_rel != Some(cell.rel) {
+                // The points and unknowns around the level-0 cell, once for
+                // all of its live sub-cells: every point within `r` of the
+                // cell is within `r` plus half its diagonal of its centre.
+                group_rel = Some(cell.rel);
+                group_at = next_pool.len();
+                group_unknown = false;
+                let c0 = w.canonical(&cell.rel);
+                let (clo, chi) = w.sub_box(&c0, &[0; N], 0);
+                let centre: [f64; N] = core::array::from_fn(|a| 0.5 * (clo[a] + chi[a]));
+                w.each_slot(&cell.rel, |slot| {
+                    match slot {
+                        Slot::Cell(at) => {
+                            let p = w.point_of[at];
+                            if p != NONE && w.dist2(&w.points[p as usize], &centre) <= reach0 {
+                                next_pool.push(p);
+                            }
+                            group_unknown |= w.taint[at];
                         }
-                        unknown |= w.taint[at];
+                        Slot::Outer => group_unknown = true,
+                        Slot::Empty => {}
                     }
-                    Slot::Outer => unknown = true,
-                    Slot::Empty => {}
-                }
-                true
-            });
+                    true
+                });
+            }
+            let near = &next_pool[group_at..];
+            let unknown = cell.unknown || group_unknown;
+            let c = w.canonical(&cell.rel);
             // An unknown cell whose level-0 cell is already tainted adds
             // nothing: its darts could only taint that cell again, and every
             // dart within `r` of them already sees the taint.
@@ -566,6 +759,7 @@ pub(crate) fn run<const N: usize>(
             if unknown && w.taint[lin] && !in_query {
                 continue;
             }
+
             let children: u32 = if split { 1 << N } else { 1 };
             for k in 0..children {
                 let sub: [u32; N] = if split {
@@ -577,10 +771,7 @@ pub(crate) fn run<const N: usize>(
                 if (0..N).any(|axis| lo[axis] >= hi[axis]) {
                     continue;
                 }
-                if near
-                    .iter()
-                    .any(|&p| w.covers(&w.points[p as usize], &lo, &hi))
-                {
+                if w.union_covers(&lo, &hi, near, UNION_DEPTH) {
                     continue;
                 }
                 if in_query {
@@ -592,13 +783,17 @@ pub(crate) fn run<const N: usize>(
                     }
                     query_live = true;
                 }
+                #[expect(clippy::cast_possible_truncation, reason = "the pool holds < 2^32")]
                 next.push(Live {
                     rel: cell.rel,
                     sub,
                     unknown,
+                    near_at: group_at as u32,
+                    near_len: near.len() as u32,
                 });
             }
         }
+        core::mem::swap(&mut near_pool, &mut next_pool);
         live = next;
         level = next_level;
         if !query_live || round >= MAX_ROUNDS {
