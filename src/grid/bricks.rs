@@ -562,45 +562,28 @@ impl<const N: usize> Bricks<N> {
         })
     }
 
-    /// The points of the occupied cells among `masks` (the window whose
-    /// low corner is at `low` spans 8 bricks, ordered as
-    /// [`Self::corners`]; a mask per brick), brick by brick, the one
-    /// holding the window's centre first, each brick's in address order,
-    /// handed to `stop` until it says so: then that point.
+    /// [`masked_walk`] over this grid's bricks: the window whose low
+    /// corner is at `low` spans 8 bricks, found from the first by
+    /// [`Self::corners`].
     #[inline(always)]
     fn first_masked(
         &self,
         low: usize,
         masks: &[u64; 8],
-        mut stop: impl FnMut(&[f64; N]) -> bool,
+        stop: impl FnMut(&[f64; N]) -> bool,
     ) -> Option<[f64; N]> {
         let first = low & !(BRICK_CELLS - 1);
-        let place = low % BRICK_CELLS;
-        // The centre is 2 past the low corner on every axis.
-        let own = ((place & 3) + 2) >> 2
-            | (((place >> 2 & 3) + 2) >> 2) << 1
-            | (((place >> 4) + 2) >> 2) << 2;
-        for k in 0..8 {
-            let corner = k ^ own;
-            let (Some(&step), Some(&mask)) = (self.corners.get(corner), masks.get(corner)) else {
-                continue;
-            };
-            let brick_address = first + step;
-            let Some(b) = self.bricks.get(brick_address / BRICK_CELLS) else {
-                continue;
-            };
-            let mut m = b.occupied & mask;
-            while m != 0 {
-                let address = brick_address + m.trailing_zeros() as usize;
-                m &= m - 1;
-                if let Some(q) = self.point(address)
-                    && stop(q)
-                {
-                    return Some(*q);
-                }
-            }
-        }
-        None
+        let at = |corner: usize| first + self.corners.get(corner).copied().unwrap_or(0);
+        masked_walk(
+            low % BRICK_CELLS,
+            masks,
+            |corner| {
+                self.corners.get(corner)?;
+                self.bricks.get(at(corner) / BRICK_CELLS)
+            },
+            |corner, _, bit| self.point(at(corner) + bit),
+            stop,
+        )
     }
 
     /// Spill slots that storing a point in `cell` may open: a chunk for
@@ -627,6 +610,46 @@ impl<const N: usize> Bricks<N> {
         });
         needed
     }
+}
+
+/// The points of the occupied cells among `masks` (a window of a reach of
+/// 2 in 3-D, whose low corner lies at `place` in its brick, spans 8
+/// bricks; a mask per brick, bit `a` of its index the next brick along
+/// axis `a`), brick by brick, the one holding the window's centre first,
+/// each brick's in cell order, handed to `stop` until it says so: then
+/// that point. `brick(corner)` is a corner's brick (`None`: empty), and
+/// `point(corner, brick, bit)` the point of its occupied cell `bit`. The
+/// dense and the paged bricks both search through it, so they visit the
+/// points in one order and make the same set.
+#[inline(always)]
+pub(super) fn masked_walk<'a, const N: usize>(
+    place: usize,
+    masks: &[u64; 8],
+    brick: impl Fn(usize) -> Option<&'a Brick<N>>,
+    point: impl Fn(usize, &'a Brick<N>, usize) -> Option<&'a [f64; N]>,
+    mut stop: impl FnMut(&[f64; N]) -> bool,
+) -> Option<[f64; N]> {
+    // The centre is 2 past the low corner on every axis.
+    let own = ((place & 3) + 2) >> 2
+        | (((place >> 2 & 3) + 2) >> 2) << 1
+        | (((place >> 4) + 2) >> 2) << 2;
+    for k in 0..8 {
+        let corner = k ^ own;
+        let (Some(b), Some(&mask)) = (brick(corner), masks.get(corner)) else {
+            continue;
+        };
+        let mut m = b.occupied & mask;
+        while m != 0 {
+            let bit = m.trailing_zeros() as usize;
+            m &= m - 1;
+            if let Some(q) = point(corner, b, bit)
+                && stop(q)
+            {
+                return Some(*q);
+            }
+        }
+    }
+    None
 }
 
 /// A stencil's cells (window entries, reach 2) as bit masks over the 8

@@ -51,7 +51,8 @@ use crate::vector::unit_ball_volume;
 #[non_exhaustive]
 pub enum GridLayout {
     /// Dense when `N <= 3` and the dense grid fits the memory budget;
-    /// else [`Paged`](Self::Paged) in a bounded box; otherwise sparse. From 4-D up the dense grid's neighbourhood (504
+    /// else [`Paged`](Self::Paged) in a bounded box; otherwise sparse.
+    /// From 4-D up the dense grid's neighbourhood (504
     /// cells a check in 4-D, thousands from 5-D) costs more time and
     /// memory than the sparse grid's search (the journal's "Sparse grid
     /// from 4-D up" has the measurements).
@@ -590,10 +591,11 @@ pub(crate) fn plan<const N: usize>(
                 return Ok(GridPlan::Dense(d));
             }
             // Pages where the box is bounded: memory that follows the
-            // points, at 0.8 of the dense grid's speed in 2-D and 0.9 in
-            // 3-D (pages of bricks), where the sparse grid runs at 0.65 of
-            // it with its array of heads and far slower with its hash
-            // table. The journal's "Paged grid" has the runs.
+            // points, at about 0.9 of the dense grid's speed in 2-D and
+            // 3-D (pages of bricks, there), where in 3-D the sparse grid
+            // takes 2.2× the pages' time with its array of heads and 4.6×
+            // with its hash table. The journal's "Pages of bricks in 3-D"
+            // has the runs.
             if let Ok(p) = plan_paged(domain, radius, max_points, budget)
                 && p.bytes <= budget
             {
@@ -647,24 +649,21 @@ impl<const N: usize> Grid<N> {
                     Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
                 }
             },
-            GridPlan::Paged(p) if paged_bricks::applies(&p.dense.reach) => {
-                match paged_bricks::PagedBricks::try_new(p, domain, radius) {
-                    Some(grid) => Grid::PagedBricks(grid),
-                    None => {
-                        let s = plan_sparse(domain, radius, 0)
-                            .unwrap_or_else(|_| fallback_sparse(&p.dense));
-                        Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
-                    }
-                }
-            }
-            GridPlan::Paged(p) => match paged::Paged::try_new(p, domain, radius) {
-                Some(grid) => Grid::Paged(grid),
-                None => {
+            GridPlan::Paged(p) => {
+                // Bricks in pages where their masks apply (3-D, a reach
+                // of 2), else `u32` cells; the sparse grid if neither can
+                // be allocated.
+                let paged = if paged_bricks::applies(&p.dense.reach) {
+                    paged_bricks::PagedBricks::try_new(p, domain, radius).map(Grid::PagedBricks)
+                } else {
+                    paged::Paged::try_new(p, domain, radius).map(Grid::Paged)
+                };
+                paged.unwrap_or_else(|| {
                     let s = plan_sparse(domain, radius, 0)
                         .unwrap_or_else(|_| fallback_sparse(&p.dense));
                     Grid::Sparse(sparse::Sparse::new(&s, domain, radius))
-                }
-            },
+                })
+            }
             GridPlan::Sparse(s) => Grid::Sparse(sparse::Sparse::new(s, domain, radius)),
         }
     }

@@ -20,7 +20,7 @@
 //! side); [`super::paged::Paged`] takes the others.
 
 use super::NeighbourGrid;
-use super::bricks::{BRICK_CELLS, Brick, CAPACITY, SPILL, Windowed, masks, put, rank};
+use super::bricks::{BRICK_CELLS, Brick, CAPACITY, SPILL, Windowed, masked_walk, masks, put, rank};
 use super::dense::{closer, locate, parts};
 use super::paged::{Directory, PagedPlan};
 use crate::budget::{bytes_of, vec_bytes};
@@ -201,41 +201,23 @@ impl<const N: usize> PagedBricks<N> {
         }
     }
 
-    /// As [`super::bricks::Bricks`]'s: the points of the occupied cells
-    /// among `masks`, brick by brick, the one holding the window's centre
-    /// first, each brick's in cell order, handed to `stop` until it says
-    /// so: then that point. The same order as the dense bricks, so the
-    /// same points come out.
+    /// [`masked_walk`] over the window's bricks `seen`.
     #[inline(always)]
     fn first_masked(
         &self,
         seen: &[Seen<'_, N>; 8],
         place: usize,
         masks: &[u64; 8],
-        mut stop: impl FnMut(&[f64; N]) -> bool,
+        stop: impl FnMut(&[f64; N]) -> bool,
     ) -> Option<[f64; N]> {
-        // The centre is 2 past the low corner on every axis.
-        let own = ((place & 3) + 2) >> 2
-            | (((place >> 2 & 3) + 2) >> 2) << 1
-            | (((place >> 4) + 2) >> 2) << 2;
-        for k in 0..8 {
-            let corner = k ^ own;
-            let (Some(Some((brick, mark))), Some(&mask)) = (seen.get(corner), masks.get(corner))
-            else {
-                continue;
-            };
-            let mut m = brick.occupied & mask;
-            while m != 0 {
-                let bit = m.trailing_zeros() as usize;
-                m &= m - 1;
-                if let Some(q) = self.point(brick, *mark, bit)
-                    && stop(q)
-                {
-                    return Some(*q);
-                }
-            }
-        }
-        None
+        let mark = |corner: usize| seen.get(corner).copied().flatten().map_or(0, |(_, m)| m);
+        masked_walk(
+            place,
+            masks,
+            |corner| Some(seen.get(corner).copied().flatten()?.0),
+            |corner, brick, bit| self.point(brick, mark(corner), bit),
+            stop,
+        )
     }
 
     /// Asks for each existing brick's first three lines, as the bricks do.
@@ -371,9 +353,6 @@ impl<const N: usize> NeighbourGrid<N> for PagedBricks<N> {
     fn insert(&mut self, p: [f64; N]) -> bool {
         let (cell, _) = locate(&p, &self.lo, &self.inv_side, &self.last, 1);
         let (page, inner, place) = Self::home(&cell);
-        if self.spill.capacity() - self.spill.len() < self.spill_needed(&cell) {
-            return false;
-        }
         let Some(id) = self.directory.get(&page) else {
             return false;
         };
@@ -381,7 +360,9 @@ impl<const N: usize> NeighbourGrid<N> for PagedBricks<N> {
             return false;
         };
         // Occupied only if rounding put two valid points in one cell: `put`
-        // drops the newcomer, the set stays valid.
+        // drops the newcomer, the set stays valid. A point is stored in one
+        // brick only, so `put`'s own check for room in the spill (made by
+        // `reserve`) refuses it before anything is written.
         put(
             &mut pg.bricks,
             (&mut self.spill, &mut pg.spill_starts),
