@@ -31,7 +31,8 @@
 //!   place: any box asked of it (a chunk of an endless world, a tile, a
 //!   slab on another thread or machine) returns exactly the whole set's
 //!   points there, whatever the order, chunk size or thread count, bit for
-//!   bit; bounded, periodic or unbounded (`docs/field.md`).
+//!   bit; bounded, periodic or unbounded, in a region if one is given
+//!   ([`FieldRegion`], [`SignedDistance`]; `docs/field.md`).
 //!   [`PoissonDisk::generate_parallel`] stays beside it for the serial
 //!   sampler's statistics (Bridson at `k`, not maximal) on several threads.
 //! - For a renderer's camera samples, [`PixelSampler`] is a sampler trait
@@ -347,7 +348,10 @@ pub use crate::candidates::Candidates;
 pub use crate::density::relative_radius;
 pub use crate::domain::Domain;
 pub use crate::error::Error;
-pub use crate::field::{DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, Query, chunk_boxes, field_order};
+pub use crate::field::{
+    DEFAULT_MAX_WINDOW_CELLS_BYTES, Field, FieldRegion, Query, SignedDistance, chunk_boxes,
+    field_order,
+};
 pub use crate::grid::{DEFAULT_MAX_GRID_BYTES, GridLayout};
 pub use crate::incomplete::Incomplete;
 pub use crate::random::{DefaultRng, seeded_rng};

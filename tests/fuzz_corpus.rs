@@ -23,6 +23,9 @@ mod nets;
 #[path = "../fuzz/common/parts.rs"]
 mod parts;
 
+#[path = "../fuzz/common/field.rs"]
+mod field;
+
 #[cfg(feature = "serde")]
 #[path = "../fuzz/common/config_json.rs"]
 mod config_json;
@@ -91,6 +94,20 @@ fn nets_corpus() {
 #[test]
 fn parts_corpus() {
     replay("parts", parts::run);
+}
+
+#[test]
+fn field_corpus() {
+    replay("field", field::run);
+}
+
+/// The decoder accepts every input, even an empty one.
+#[test]
+fn field_decodes_short_inputs() {
+    for len in 0..=3 {
+        field::run(&vec![0xff; len]);
+        field::run(&vec![0; len]);
+    }
 }
 
 #[cfg(feature = "serde")]

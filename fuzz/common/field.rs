@@ -2,14 +2,15 @@
 //!
 //! Every byte string decodes to a box (bounded or periodic per axis, or an
 //! unbounded field), a radius, a seed, a query box and a cut through it,
-//! raw `f64` bit patterns now and then. For every input: construction and
-//! queries return a result, never panic; when they succeed on a set small
-//! enough for the O(n²) oracle, the two halves of the query box together
-//! equal the whole box's points, no pair is closer than `r`, and every
-//! point is in the query box.
+//! raw `f64` bit patterns now and then, and a region (none, a ball, or a
+//! slab that may have no width) given as a signed distance. For every
+//! input: construction and queries return a result, never panic; every
+//! point is in the query box and in the region; when they succeed on a set
+//! small enough for the O(n²) oracle, the two halves of the query box
+//! together equal the whole box's points and no pair is closer than `r`.
 
 use crate::bytes::{Bytes, log_uniform};
-use bridson::{Domain, Field};
+use bridson::{Domain, Field, FieldRegion, SignedDistance};
 
 /// The window budget for one query: a few MB, so executions stay fast.
 const WINDOW_BYTES: u64 = 8 << 20;
@@ -26,7 +27,7 @@ fn value(b: &mut Bytes<'_>, usual: f64) -> f64 {
 }
 
 fn run_dim<const N: usize>(b: &mut Bytes<'_>) {
-    let unbounded = b.u8() % 4 == 0;
+    let unbounded = b.u8().is_multiple_of(4);
     let mut lo = [0.0; N];
     let mut hi = [0.0; N];
     let mut periodic = [false; N];
@@ -35,7 +36,11 @@ fn run_dim<const N: usize>(b: &mut Bytes<'_>) {
         hi[axis] = lo[axis] + value(b, 10.0).abs() + 1e-3;
         periodic[axis] = b.u8() % 2 == 1;
     }
-    let radius = if b.u8() % 8 == 0 { b.f64_bits() } else { log_uniform(b, 0.05, 20.0) };
+    let radius = if b.u8().is_multiple_of(8) {
+        b.f64_bits()
+    } else {
+        log_uniform(b, 0.05, 20.0)
+    };
     let seed = b.u64();
     let field = if unbounded {
         Field::<N>::unbounded(radius, seed)
@@ -47,9 +52,62 @@ fn run_dim<const N: usize>(b: &mut Bytes<'_>) {
     };
     let Ok(field) = field else { return };
     let field = field.with_max_window_bytes(WINDOW_BYTES);
+    let shape = Shape {
+        kind: b.u8() % 3,
+        centre: core::array::from_fn(|_| value(b, 10.0)),
+        size: value(b, 5.0),
+        axis: usize::from(b.u8()) % N,
+    };
+    let sd = move |p: &[f64; N]| shape.distance(p);
+    match shape.kind {
+        0 => check(&field, b, &lo, &hi, unbounded, &periodic, |_| true),
+        _ => check(
+            &field.with_region(SignedDistance(sd)),
+            b,
+            &lo,
+            &hi,
+            unbounded,
+            &periodic,
+            |p| sd(p) <= 0.0,
+        ),
+    }
+}
+
+/// A region decoded from the input: a ball (kind 1) or a slab across one
+/// axis (kind 2), of half-width `size` (which may be negative or zero).
+#[derive(Clone, Copy)]
+struct Shape<const N: usize> {
+    kind: u8,
+    centre: [f64; N],
+    size: f64,
+    axis: usize,
+}
+
+impl<const N: usize> Shape<N> {
+    fn distance(&self, p: &[f64; N]) -> f64 {
+        if self.kind == 1 {
+            let d2: f64 = (0..N).map(|a| (p[a] - self.centre[a]).powi(2)).sum();
+            d2.sqrt() - self.size
+        } else {
+            (p[self.axis] - self.centre[self.axis]).abs() - self.size
+        }
+    }
+}
+
+/// The checks on one field, its region's test beside it.
+fn check<const N: usize, R: FieldRegion<N> + Sync>(
+    field: &Field<N, R>,
+    b: &mut Bytes<'_>,
+    lo: &[f64; N],
+    hi: &[f64; N],
+    unbounded: bool,
+    periodic: &[bool; N],
+    admits: impl Fn(&[f64; N]) -> bool,
+) {
+    let radius = field.radius();
     // The query box: the domain's, or one decoded from the input.
-    let (qlo, qhi) = if b.u8() % 2 == 0 && !unbounded {
-        (lo, hi)
+    let (qlo, qhi) = if b.u8().is_multiple_of(2) && !unbounded {
+        (*lo, *hi)
     } else {
         let mut a = [0.0; N];
         let mut c = [0.0; N];
@@ -59,11 +117,16 @@ fn run_dim<const N: usize>(b: &mut Bytes<'_>) {
         }
         (a, c)
     };
-    let Ok(whole) = field.points_in(qlo, qhi) else { return };
+    let Ok(whole) = field.points_in(qlo, qhi) else {
+        return;
+    };
     assert!(
-        whole.iter().all(|p| (0..N).all(|a| qlo[a] <= p[a] && p[a] < qhi[a])),
+        whole
+            .iter()
+            .all(|p| (0..N).all(|a| qlo[a] <= p[a] && p[a] < qhi[a])),
         "a point outside the query box"
     );
+    assert!(whole.iter().all(admits), "a point outside the region");
     if whole.len() > POINT_LIMIT {
         return;
     }

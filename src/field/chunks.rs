@@ -10,7 +10,7 @@
     reason = "indices are axes `< N` of `[_; N]` arrays"
 )]
 
-use super::{Field, field_order};
+use super::{Field, FieldRegion, field_order};
 use crate::error::Error;
 
 /// The most chunks one call cuts a box into.
@@ -103,7 +103,9 @@ pub fn chunk_boxes<const N: usize>(
     Ok(out)
 }
 
-impl<const N: usize> Field<N> {
+// The region is `Sync` in both builds, so that turning the `threads`
+// feature off never changes which fields compile.
+impl<const N: usize, R: FieldRegion<N> + Sync> Field<N, R> {
     /// The points in `[lo, hi)`, made chunk by chunk (chunks of `chunk` on a
     /// side) on `threads` threads, in [`field_order`]: the same points, bit
     /// for bit, as [`Field::points_in`] for every `chunk` and `threads`.

@@ -76,13 +76,16 @@
 mod chunks;
 mod hash;
 mod lattice;
+mod region;
 mod window;
 
 use crate::domain::Domain;
 use crate::error::Error;
+use crate::sampler::Everywhere;
 use lattice::{Axis, Lattice};
 
 pub use chunks::chunk_boxes;
+pub use region::{FieldRegion, SignedDistance};
 
 /// Smallest and largest radius accepted, as for every sampler of the crate.
 const MIN_RADIUS: f64 = 1e-150;
@@ -155,12 +158,16 @@ const fn bytes_per_cell(n: usize) -> u64 {
 /// assert_eq!(a, b);
 /// # Ok::<(), bridson::Error>(())
 /// ```
+///
+/// A region ([`Field::with_region`]) keeps the points inside it, and the
+/// set maximal there.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Field<const N: usize> {
+pub struct Field<const N: usize, R = Everywhere> {
     lattice: Lattice<N>,
     radius: f64,
     seed: u64,
     max_window_bytes: u64,
+    region: R,
 }
 
 /// One answered query with what it cost: see [`Field::query`].
@@ -215,6 +222,7 @@ impl<const N: usize> Field<N> {
             radius,
             seed,
             max_window_bytes: DEFAULT_MAX_WINDOW_CELLS_BYTES,
+            region: Everywhere,
         })
     }
 
@@ -235,9 +243,32 @@ impl<const N: usize> Field<N> {
             radius,
             seed,
             max_window_bytes: DEFAULT_MAX_WINDOW_CELLS_BYTES,
+            region: Everywhere,
         })
     }
 
+    /// The field restricted to a region: darts outside it are dropped and
+    /// cells that do not meet it die, so the points lie in the region and
+    /// every point of the region is within `r` of one of them (maximal
+    /// there). The region is part of the set's definition, as the seed is:
+    /// every query of the returned field sees the same points.
+    ///
+    /// Only a region a field can test boxes against will do
+    /// ([`FieldRegion`]); a signed distance is the usual way to give one
+    /// ([`SignedDistance`]).
+    #[must_use]
+    pub fn with_region<S: FieldRegion<N>>(self, region: S) -> Field<N, S> {
+        Field {
+            lattice: self.lattice,
+            radius: self.radius,
+            seed: self.seed,
+            max_window_bytes: self.max_window_bytes,
+            region,
+        }
+    }
+}
+
+impl<const N: usize, R: FieldRegion<N>> Field<N, R> {
     /// The same field with another memory budget for one query's window
     /// (default [`DEFAULT_MAX_WINDOW_CELLS_BYTES`], 1 GiB). It never
     /// changes the points, only which queries are refused. The check
@@ -248,6 +279,12 @@ impl<const N: usize> Field<N> {
     pub fn with_max_window_bytes(mut self, bytes: u64) -> Self {
         self.max_window_bytes = bytes;
         self
+    }
+
+    /// The field's region ([`Everywhere`] unless [`Field::with_region`]
+    /// gave one).
+    pub fn region(&self) -> &R {
+        &self.region
     }
 
     /// The minimum distance `r`.
@@ -306,7 +343,9 @@ impl<const N: usize> Field<N> {
     /// [`Error::BoxTooWide`] if the box reaches more than about 2⁴⁰ radii
     /// from the lattice's origin; [`Error::GridTooLarge`] if the window the
     /// query needs is over the memory budget (ask in smaller boxes, see
-    /// [`Field::points_in_parallel`]).
+    /// [`Field::points_in_parallel`]), or if its live cells outgrow the
+    /// budget, which only a region of (nearly) zero volume makes happen
+    /// ([`FieldRegion::meets`]).
     pub fn query(&self, lo: [f64; N], hi: [f64; N]) -> Result<Query<N>, Error> {
         for axis in 0..N {
             if !lo[axis].is_finite() || !hi[axis].is_finite() {
@@ -323,7 +362,7 @@ impl<const N: usize> Field<N> {
         let mut halo = start_halo(N);
         loop {
             self.check_window(&qa, &qb, halo)?;
-            let run = window::run(&self.lattice, self.radius, self.seed, &qa, &qb, halo);
+            let run = window::run(self.window_job(&qa, &qb, halo))?;
             if let Some(mut points) = run.points {
                 points.retain(|p| (0..N).all(|a| lo[a] <= p[a] && p[a] < hi[a]));
                 points.sort_by(field_order);
@@ -357,8 +396,27 @@ impl<const N: usize> Field<N> {
             .ok_or(Error::BoxTooWide { axis: 0 })?;
         let halo = i64::from(halo);
         self.check_window(&qa, &qb, halo)?;
-        let run = window::run(&self.lattice, self.radius, self.seed, &qa, &qb, halo);
+        let run = window::run(self.window_job(&qa, &qb, halo))?;
         Ok(run.points.map(|_| run.rounds))
+    }
+
+    /// What one window run needs to know.
+    fn window_job<'a>(
+        &'a self,
+        qa: &'a [i64; N],
+        qb: &'a [i64; N],
+        halo: i64,
+    ) -> window::Job<'a, N, R> {
+        window::Job {
+            lat: &self.lattice,
+            radius: self.radius,
+            seed: self.seed,
+            region: &self.region,
+            qa,
+            qb,
+            margin: halo,
+            max_bytes: self.max_window_bytes,
+        }
     }
 
     /// Checks the window of cells `[qa, qb)` grown by `halo` against the
