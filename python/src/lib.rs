@@ -24,9 +24,10 @@
 //! without a copy, queries without the GIL.
 
 use bridson::{
-    CameraPixels as CoreCameraPixels, Candidates, DefaultRng, Domain, Error, PixelSampler as _,
-    Pixels as CorePixels, PoissonDisk as CorePoissonDisk, PoissonPixelSampler as CorePixelSampler,
-    Region, Scheme, Tiled as CoreTiled, VaryingPoints,
+    CameraPixels as CoreCameraPixels, Candidates, DefaultRng, Domain, Error,
+    NetPixelSampler as CoreNetPixelSampler, PixelSampler as _, Pixels as CorePixels,
+    PoissonDisk as CorePoissonDisk, PoissonPixelSampler as CorePixelSampler, Region, Scheme,
+    Tiled as CoreTiled, VaryingPoints,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -1078,110 +1079,131 @@ type CameraArrays<'py> = (
     Bound<'py, PyArray2<f64>>,
 );
 
-/// Camera samples for a renderer, in the shape of pbrt-v4's sampler:
-/// exactly `spp` samples in every dimension of every pixel, each dimension
-/// a periodic Poisson disk set, the values a pure function of (seed,
-/// pixel, sample index, dimension).
-#[pyclass(module = "bridson_rs._native")]
-struct PoissonPixelSampler {
-    inner: Mutex<CorePixelSampler>,
-}
-
-impl PoissonPixelSampler {
-    fn get(&mut self) -> PyResult<&mut CorePixelSampler> {
-        self.inner
-            .get_mut()
-            .map_err(|_| PyValueError::new_err("the sampler failed earlier"))
-    }
-}
-
-#[pymethods]
-impl PoissonPixelSampler {
-    #[new]
-    #[pyo3(signature = (spp, seed, *, resolution=None))]
-    fn new(spp: u32, seed: &Bound<'_, PyAny>, resolution: Option<(u32, u32)>) -> PyResult<Self> {
-        let mut inner = CorePixelSampler::new(spp, seed_u64(seed)?).map_err(value_error)?;
-        if let Some((w, h)) = resolution {
-            inner = inner.with_resolution([w, h]);
+/// The Python class of one of the crate's pixel samplers: the same
+/// constructor (`spp`, `seed`, `resolution=`) and methods for every one.
+macro_rules! pixel_sampler_class {
+    ($(#[doc = $doc:expr])* $name:ident, $core:ty) => {
+        $(#[doc = $doc])*
+        #[pyclass(module = "bridson_rs._native")]
+        struct $name {
+            inner: Mutex<$core>,
         }
-        Ok(Self {
-            inner: Mutex::new(inner),
-        })
-    }
 
-    /// Samples per pixel.
-    #[getter]
-    fn samples_per_pixel(&mut self) -> PyResult<u32> {
-        Ok(self.get()?.samples_per_pixel())
-    }
-
-    /// The seed.
-    #[getter]
-    fn seed(&mut self) -> PyResult<u64> {
-        Ok(self.get()?.seed())
-    }
-
-    /// Moves to sample `index` of `pixel` (`(x, y)`), dimension `dimension`.
-    #[pyo3(signature = (pixel, index, dimension=0))]
-    fn start_pixel_sample(
-        &mut self,
-        pixel: (u32, u32),
-        index: u32,
-        dimension: u32,
-    ) -> PyResult<()> {
-        self.get()?
-            .start_pixel_sample([pixel.0, pixel.1], index, dimension)
-            .map_err(value_error)
-    }
-
-    /// The next value in `[0, 1)`.
-    fn get_1d(&mut self) -> PyResult<f64> {
-        Ok(self.get()?.get_1d())
-    }
-
-    /// The next pair in `[0, 1)²`.
-    fn get_2d(&mut self) -> PyResult<(f64, f64)> {
-        let [u, v] = self.get()?.get_2d();
-        Ok((u, v))
-    }
-
-    /// The film offset of the current sample inside its pixel.
-    fn get_pixel_2d(&mut self) -> PyResult<(f64, f64)> {
-        let [u, v] = self.get()?.get_pixel_2d();
-        Ok((u, v))
-    }
-
-    /// The camera's values for the current sample: `(film, time, lens)`.
-    fn camera_sample(&mut self) -> PyResult<Camera> {
-        let c = self.get()?.camera_sample();
-        Ok(((c.film[0], c.film[1]), c.time, (c.lens[0], c.lens[1])))
-    }
-
-    /// Every sample of `pixel` at once: `(film, time, lens)` as `(spp, 2)`,
-    /// `(spp,)` and `(spp, 2)` arrays (each sample from dimension 0).
-    fn camera_samples<'py>(
-        &mut self,
-        py: Python<'py>,
-        pixel: (u32, u32),
-    ) -> PyResult<CameraArrays<'py>> {
-        let s = self.get()?;
-        let spp = s.samples_per_pixel();
-        let (mut film, mut time, mut lens) = (Vec::new(), Vec::new(), Vec::new());
-        for index in 0..spp {
-            s.start_pixel_sample([pixel.0, pixel.1], index, 0)
-                .map_err(value_error)?;
-            let c = s.camera_sample();
-            film.extend(c.film);
-            time.push(c.time);
-            lens.extend(c.lens);
+        impl $name {
+            fn get(&mut self) -> PyResult<&mut $core> {
+                self.inner
+                    .get_mut()
+                    .map_err(|_| PyValueError::new_err("the sampler failed earlier"))
+            }
         }
-        Ok((
-            to_array(py, film, 2)?,
-            PyArray1::from_vec(py, time),
-            to_array(py, lens, 2)?,
-        ))
-    }
+
+        #[pymethods]
+        impl $name {
+            #[new]
+            #[pyo3(signature = (spp, seed, *, resolution=None))]
+            fn new(spp: u32, seed: &Bound<'_, PyAny>, resolution: Option<(u32, u32)>) -> PyResult<Self> {
+                let mut inner = <$core>::new(spp, seed_u64(seed)?).map_err(value_error)?;
+                if let Some((w, h)) = resolution {
+                    inner = inner.with_resolution([w, h]);
+                }
+                Ok(Self {
+                    inner: Mutex::new(inner),
+                })
+            }
+
+            /// Samples per pixel.
+            #[getter]
+            fn samples_per_pixel(&mut self) -> PyResult<u32> {
+                Ok(self.get()?.samples_per_pixel())
+            }
+
+            /// The seed.
+            #[getter]
+            fn seed(&mut self) -> PyResult<u64> {
+                Ok(self.get()?.seed())
+            }
+
+            /// Moves to sample `index` of `pixel` (`(x, y)`), dimension `dimension`.
+            #[pyo3(signature = (pixel, index, dimension=0))]
+            fn start_pixel_sample(
+                &mut self,
+                pixel: (u32, u32),
+                index: u32,
+                dimension: u32,
+            ) -> PyResult<()> {
+                self.get()?
+                    .start_pixel_sample([pixel.0, pixel.1], index, dimension)
+                    .map_err(value_error)
+            }
+
+            /// The next value in `[0, 1)`.
+            fn get_1d(&mut self) -> PyResult<f64> {
+                Ok(self.get()?.get_1d())
+            }
+
+            /// The next pair in `[0, 1)²`.
+            fn get_2d(&mut self) -> PyResult<(f64, f64)> {
+                let [u, v] = self.get()?.get_2d();
+                Ok((u, v))
+            }
+
+            /// The film offset of the current sample inside its pixel.
+            fn get_pixel_2d(&mut self) -> PyResult<(f64, f64)> {
+                let [u, v] = self.get()?.get_pixel_2d();
+                Ok((u, v))
+            }
+
+            /// The camera's values for the current sample: `(film, time, lens)`.
+            fn camera_sample(&mut self) -> PyResult<Camera> {
+                let c = self.get()?.camera_sample();
+                Ok(((c.film[0], c.film[1]), c.time, (c.lens[0], c.lens[1])))
+            }
+
+            /// Every sample of `pixel` at once: `(film, time, lens)` as `(spp, 2)`,
+            /// `(spp,)` and `(spp, 2)` arrays (each sample from dimension 0).
+            fn camera_samples<'py>(
+                &mut self,
+                py: Python<'py>,
+                pixel: (u32, u32),
+            ) -> PyResult<CameraArrays<'py>> {
+                let s = self.get()?;
+                let spp = s.samples_per_pixel();
+                let (mut film, mut time, mut lens) = (Vec::new(), Vec::new(), Vec::new());
+                for index in 0..spp {
+                    s.start_pixel_sample([pixel.0, pixel.1], index, 0)
+                        .map_err(value_error)?;
+                    let c = s.camera_sample();
+                    film.extend(c.film);
+                    time.push(c.time);
+                    lens.extend(c.lens);
+                }
+                Ok((
+                    to_array(py, film, 2)?,
+                    PyArray1::from_vec(py, time),
+                    to_array(py, lens, 2)?,
+                ))
+            }
+        }
+    };
 }
+
+pixel_sampler_class!(
+    /// Camera samples for a renderer, in the shape of pbrt-v4's sampler:
+    /// exactly `spp` samples in every dimension of every pixel, each dimension
+    /// a periodic Poisson disk set, the values a pure function of (seed,
+    /// pixel, sample index, dimension).
+    PoissonPixelSampler,
+    CorePixelSampler
+);
+
+pixel_sampler_class!(
+    /// Camera samples whose film offsets and 2-D pairs are Poisson disk nets:
+    /// for `spp = 2^m` a (0,m,2)-net in every pixel and dimension pair, also
+    /// well spaced; stratified in both axes for other counts (1 to 4096).
+    /// The same methods as `PoissonPixelSampler`.
+    NetPixelSampler,
+    CoreNetPixelSampler
+);
 
 /// One pixel of a `CameraPixels` stream: `(x, y, film, time, lens,
 /// extra)`, arrays of `(m, 2)`, `(m,)`, `(m, 2)` and `(m, extra_dims)`.
@@ -1258,6 +1280,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Tiled>()?;
     m.add_class::<Pixels>()?;
     m.add_class::<PoissonPixelSampler>()?;
+    m.add_class::<NetPixelSampler>()?;
     m.add_class::<CameraPixels>()?;
     m.add_class::<field::PyField>()?;
     m.add_function(wrap_pyfunction!(field::chunk_boxes_of, m)?)?;
@@ -1268,5 +1291,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_ATTEMPTS", bridson::DEFAULT_ATTEMPTS)?;
     m.add("MAX_ATTEMPTS", bridson::MAX_ATTEMPTS)?;
     m.add("MAX_SAMPLES_PER_PIXEL", bridson::MAX_SAMPLES_PER_PIXEL)?;
+    m.add(
+        "NET_MAX_SAMPLES_PER_PIXEL",
+        bridson::NET_MAX_SAMPLES_PER_PIXEL,
+    )?;
     Ok(())
 }

@@ -11,8 +11,8 @@ Native API (NumPy in, NumPy out, no SciPy needed):
   position) return lazy :class:`Points` streams.
 - :class:`Tiled` -- a 2-D set streamed over a raster pixel by pixel
   (:class:`Pixels`).
-- :class:`PoissonPixelSampler` and :class:`CameraPixels` -- camera samples
-  for a renderer.
+- :class:`PoissonPixelSampler`, :class:`NetPixelSampler` (Poisson disk
+  nets) and :class:`CameraPixels` -- camera samples for a renderer.
 - :class:`Field` -- a maximal set that is a pure function of (seed, radius,
   domain, position), asked for box by box (``points_in``), 1 to 4
   dimensions, bounded, periodic or unbounded; :func:`chunk_boxes`,
@@ -30,7 +30,9 @@ from ._native import (
     MAX_DIM,
     MAX_FIELD_DIM,
     MAX_SAMPLES_PER_PIXEL,
+    NET_MAX_SAMPLES_PER_PIXEL,
     CameraPixels,
+    NetPixelSampler,
     Field,
     Pixels,
     Points,
@@ -48,7 +50,9 @@ __all__ = [
     "MAX_DIM",
     "MAX_FIELD_DIM",
     "MAX_SAMPLES_PER_PIXEL",
+    "NET_MAX_SAMPLES_PER_PIXEL",
     "CameraPixels",
+    "NetPixelSampler",
     "Field",
     "Pixels",
     "Points",

@@ -11,6 +11,7 @@ MAX_DIM: int
 DEFAULT_ATTEMPTS: int
 MAX_ATTEMPTS: int
 MAX_SAMPLES_PER_PIXEL: int
+NET_MAX_SAMPLES_PER_PIXEL: int
 MAX_FIELD_DIM: int
 
 Seed = int
@@ -196,6 +197,38 @@ class PoissonPixelSampler:
     """Camera samples in the shape of pbrt-v4's sampler: exactly ``spp``
     samples in every dimension of every pixel, each dimension a periodic
     Poisson disk set, a pure function of (seed, pixel, index, dimension)."""
+
+    def __init__(
+        self, spp: int, seed: Seed, *, resolution: Optional[Tuple[int, int]] = None
+    ) -> None: ...
+    @property
+    def samples_per_pixel(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    def start_pixel_sample(
+        self, pixel: Tuple[int, int], index: int, dimension: int = 0
+    ) -> None:
+        """Moves to sample ``index`` of ``pixel``; ``ValueError`` if
+        ``index >= spp`` or the pixel lies outside ``resolution``."""
+    def get_1d(self) -> float: ...
+    def get_2d(self) -> Tuple[float, float]: ...
+    def get_pixel_2d(self) -> Tuple[float, float]: ...
+    def camera_sample(
+        self,
+    ) -> Tuple[Tuple[float, float], float, Tuple[float, float]]:
+        """``(film, time, lens)`` of the current sample."""
+    def camera_samples(
+        self, pixel: Tuple[int, int]
+    ) -> Tuple[FloatArray, FloatArray, FloatArray]:
+        """Every sample of ``pixel``: film ``(spp, 2)``, time ``(spp,)``,
+        lens ``(spp, 2)``."""
+
+class NetPixelSampler:
+    """Camera samples whose film offsets and 2-D pairs are Poisson disk
+    nets: for ``spp = 2^m`` a (0,m,2)-net in every pixel and dimension pair,
+    also well spaced; stratified in both axes for other counts (1 to
+    ``NET_MAX_SAMPLES_PER_PIXEL``). The methods of
+    :class:`PoissonPixelSampler`."""
 
     def __init__(
         self, spp: int, seed: Seed, *, resolution: Optional[Tuple[int, int]] = None
