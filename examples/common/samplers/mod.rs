@@ -63,7 +63,7 @@ pub(crate) const NAMES: [&str; 7] = [
 
 /// Samplers [`by_name`] also accepts, kept out of the default lists (and
 /// so out of the studies' committed runs) until they are measured in full:
-/// `net` is `bridson::NetPixelSampler`, at most 256 samples per pixel;
+/// `net` is `bridson::NetPixelSampler`, at most 4096 samples per pixel;
 /// `zsobol` and `pmj02bn` are pbrt-v4's two best samplers, the anchors of
 /// issue 51.
 pub(crate) const EXTRA_NAMES: [&str; 3] = ["net", "zsobol", "pmj02bn"];
