@@ -138,6 +138,23 @@ fn a_region_in_3d_keeps_its_points_inside_and_apart() {
 }
 
 #[test]
+fn a_window_over_the_budget_is_refused_and_chunks_get_round_it() {
+    let field = Field::new(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01, 5)
+        .unwrap()
+        .with_max_window_bytes(1 << 20);
+    match field.points() {
+        Err(Error::GridTooLarge { needed, budget }) => {
+            assert_eq!(budget, 1 << 20);
+            assert!(needed > budget);
+        }
+        other => panic!("expected GridTooLarge, got {other:?}"),
+    }
+    let chunked = field.points_in_parallel([0.0; 2], [1.0; 2], 0.1, 2).unwrap();
+    let plain = Field::new(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01, 5).unwrap();
+    assert_eq!(chunked, plain.points().unwrap());
+}
+
+#[test]
 fn a_region_of_zero_volume_is_refused_not_run_forever() {
     // A line: every box across it meets the region, no dart ever lands on
     // it, so its cells split without end until the budget stops them.

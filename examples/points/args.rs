@@ -99,8 +99,8 @@ pub(crate) struct Args {
     /// Stop after N points
     #[arg(long, value_name = "N")]
     max_points: Option<u64>,
-    /// Memory budget of the run, in bytes [default: 1 GiB]; a run that
-    /// outgrows it stops with exit code 2
+    /// Memory budget of the run, in bytes [default: 1 GiB]; with --field,
+    /// of one chunk's window; a run that outgrows it stops with exit code 2
     #[arg(long, value_name = "B")]
     max_grid_bytes: Option<u64>,
     /// The background grid (GridLayout) [default: auto]

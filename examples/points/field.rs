@@ -50,7 +50,10 @@ pub(crate) fn run<const N: usize>(config: &Config, mode: &FieldMode) -> Result<(
     let periodic: [bool; N] =
         core::array::from_fn(|a| config.periodic.get(a).copied().unwrap_or(false));
     let domain = Domain::new(lo, hi).map_err(usage)?.with_periodic(periodic);
-    let field = Field::new(domain, config.radius, config.seed).map_err(usage)?;
+    let mut field = Field::new(domain, config.radius, config.seed).map_err(usage)?;
+    if let Some(bytes) = config.max_grid_bytes {
+        field = field.with_max_window_bytes(bytes);
+    }
     let (qlo, qhi) = match &mode.region {
         Some((a, b)) => (array::<N>(a, "--region")?, array::<N>(b, "--region")?),
         None => (lo, hi),

@@ -402,6 +402,16 @@ impl<const N: usize> Window<'_, N> {
     }
 }
 
+/// The heap a vector holds, in bytes.
+fn bytes_of<T>(v: &Vec<T>) -> u64 {
+    (v.capacity() as u64).saturating_mul(size_of::<T>() as u64)
+}
+
+/// A sum of byte counts that saturates.
+fn heap_bytes(parts: &[u64]) -> u64 {
+    parts.iter().fold(0u64, |a, &b| a.saturating_add(b))
+}
+
 /// One window's task: the field's parameters, the query's cells
 /// `[qa, qb)` and the margin of cells around them.
 pub(crate) struct Job<'a, const N: usize, R> {
@@ -823,11 +833,30 @@ pub(crate) fn run<const N: usize, R: FieldRegion<N>>(job: Job<'_, N, R>) -> Resu
                 });
             }
         }
-        // Measured, a round's live cells peak at 0.36 of the window's cells
-        // in 2-D and 0.68 in 3-D (whole boxes of 0.2 M and 0.1 M points),
-        // far under the budget's share; only a region of zero volume brings
-        // them here.
-        let needed = (next.len() as u64).saturating_mul(size_of::<Live<N>>() as u64);
+        // The rounds' heap against the budget, counted once a round: the
+        // window's grids and points, this round's darts (with their sweep
+        // lists) and both rounds' live cells and near lists. Without a
+        // region, a round's live cells peak at 0.36 of the window's cells
+        // in 2-D and 0.68 in 3-D; a region of zero volume would split them
+        // without end, and this stops it.
+        let needed = heap_bytes(&[
+            bytes_of(&w.point_of),
+            bytes_of(&w.taint),
+            bytes_of(&w.dart_head),
+            bytes_of(&w.points),
+            bytes_of(&w.point_cell),
+            bytes_of(&darts),
+            (darts.capacity() as u64).saturating_mul(16),
+            bytes_of(&rank),
+            bytes_of(&link),
+            bytes_of(&pos),
+            bytes_of(&state),
+            bytes_of(&outcome),
+            bytes_of(&live),
+            bytes_of(&next),
+            bytes_of(&near_pool),
+            bytes_of(&next_pool),
+        ]);
         if needed > max_bytes {
             return Err(Error::GridTooLarge {
                 needed,
