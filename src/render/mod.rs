@@ -8,7 +8,9 @@ mod bank;
 mod eliminate;
 mod hash;
 mod net;
+mod net_keys;
 mod net_table;
+mod net_tile;
 mod pixel;
 mod stream;
 

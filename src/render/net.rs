@@ -3,6 +3,7 @@
 //! dimension of every pixel.
 
 use super::hash::mix;
+use super::net_keys::{Shared, compose, tile, tile_key};
 use super::net_table::{NETS, SHIFTED};
 use super::{CameraSample, PixelSampler};
 use crate::Error;
@@ -25,6 +26,10 @@ const SECOND: u64 = 0xbe54_66cf_34e9_0c6c;
 
 /// Separates a lattice draw's shift hash from the move hash.
 const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
+
+/// Shared moves are kept for hash inputs `dimension << 2 | kind` below
+/// this (dimensions below 32); others are hashed when drawn.
+const SHARED_CACHED: u64 = 128;
 
 /// A [`PixelSampler`] whose film offsets and every 2-D pair of every pixel
 /// are a **Poisson disk net**: for `spp = 2^m` (up to 4096) a (0,m,2)-net (every
@@ -50,9 +55,8 @@ const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
 ///   (coprime to `n`) gives the largest minimum distance, found in
 ///   [`new`](Self::new).
 ///
-/// A draw at (pixel, dimension) hashes the seed, the pixel, the dimension
-/// and the draw's kind into moves that keep both the stratification and
-/// every distance:
+/// A draw at (pixel, dimension) takes moves that keep both the
+/// stratification and every distance:
 /// - the bank entry (nets);
 /// - a shift of the columns by whole cells (nets from 128 samples);
 /// - shifts by a half in x and y, reflections in x and y, and the x↔y swap
@@ -61,6 +65,22 @@ const THIRD: u64 = 0xc0ac_29b7_c97c_50dd;
 /// - the common offset inside the cells, uniform;
 /// - which point is sample `index`: `(u·index + k) mod n`, `u` a unit
 ///   mod `n`, `k` uniform.
+///
+/// # Error as blue noise across pixels (`spp` a power of two up to 64)
+/// The bank entry, the symmetry and the offset inside the cells are read
+/// from a 32 × 32 toroidal tile of per-pixel keys (`src/render/net_tile.rs`,
+/// made by `examples/net_tile.rs` by simulated annealing), at an offset
+/// hashed from the seed and the dimension, and composed with moves shared
+/// by the whole image for that seed and dimension (a uniform symmetry after
+/// the tile's, a uniform offset added to the tile's mod one cell). The
+/// tile is chosen so that when neighbouring pixels integrate the same
+/// function their errors cancel: the error image has little power at low
+/// frequencies (blue noise), which a blur, a denoiser or the eye removes.
+/// Each bank entry fills the same number of tile pixels and the shared
+/// moves are uniform group elements, so every pixel's moves keep exactly
+/// the distribution below (guarantee 3). Which point is sample `index`
+/// still comes from the pixel's own hash. Pixels 32 apart draw the same set
+/// (in another order). Other counts hash every move from the pixel.
 ///
 /// # Guarantees
 /// 1. Exactly `spp` samples per pixel in every dimension; film offsets and
@@ -108,6 +128,8 @@ pub struct NetPixelSampler {
     pixel: [u32; 2],
     /// `mix(seed_hash ^ pixel)`, for the current pixel.
     pixel_hash: u64,
+    /// The shared moves of the first dimensions (tiled counts only).
+    shared: Arc<[Shared]>,
     index: u32,
     dimension: u32,
 }
@@ -131,6 +153,8 @@ pub(crate) struct Layout {
     units: Vec<u32>,
     /// The smallest toroidal minimum distance of any set, in cells².
     min_d2_cells: Option<u64>,
+    /// Nets: the tile of per-pixel keys, when there is one for `n`.
+    tile: Option<&'static [u32]>,
 }
 
 /// A draw's moves, all of them chosen by hash: which set, the symmetry,
@@ -168,6 +192,7 @@ impl Layout {
                 a: 1,
                 units,
                 min_d2_cells: None,
+                tile: tile(m),
             };
             layout.min_d2_cells = (0..sets).filter_map(|s| layout.set_min_d2(s)).min();
             layout
@@ -190,6 +215,7 @@ impl Layout {
                 a: best.1,
                 units,
                 min_d2_cells: (n > 1).then_some(best.0),
+                tile: None,
             }
         }
     }
@@ -209,8 +235,23 @@ impl Layout {
     }
 
     /// The cell of sample `index` under `moves`.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn place(&self, moves: Moves, index: u32) -> [u32; 2] {
+        self.place_offsets(moves, index, [0, 0]).0
+    }
+
+    /// The cell of sample `index` under `moves`, and its offsets inside the
+    /// cell (32-bit fractions) given the unmoved ones: for nets the moves
+    /// act on the torus as the symmetries they are, so a reflection
+    /// reflects the offset too (to within 2⁻³² of a cell) and the swap
+    /// swaps them. Lattices leave the offsets alone.
+    #[inline(always)]
+    pub(crate) fn place_offsets(
+        &self,
+        moves: Moves,
+        index: u32,
+        [mut ox, mut oy]: [u32; 2],
+    ) -> ([u32; 2], [u32; 2]) {
         let n = self.n;
         let slot = self.slot(moves, index);
         let [mut x, mut y] = self.cell(moves.set, slot);
@@ -221,6 +262,12 @@ impl Layout {
             let flip = |bits: u32| ((n >> 1) * (bits & 1)) ^ ((n - 1) * (bits >> 1 & 1));
             x ^= flip(moves.symmetry);
             y ^= flip(moves.symmetry >> 2);
+            if moves.symmetry & 2 == 2 {
+                ox = !ox;
+            }
+            if moves.symmetry & 8 == 8 {
+                oy = !oy;
+            }
         } else {
             x = add_mod(x, moves.shift[0], n);
             y = add_mod(y, moves.shift[1], n);
@@ -232,9 +279,9 @@ impl Layout {
             }
         }
         if moves.symmetry & 16 == 16 {
-            [y, x]
+            ([y, x], [oy, ox])
         } else {
-            [x, y]
+            ([x, y], [ox, oy])
         }
     }
 
@@ -398,6 +445,14 @@ impl NetPixelSampler {
 
     fn from_layout(layout: Arc<Layout>, seed: u64) -> Self {
         let seed_hash = mix(seed ^ SEED_SALT);
+        let cached = if layout.tile.is_some() {
+            SHARED_CACHED
+        } else {
+            0
+        };
+        let shared = (0..cached)
+            .map(|input| Shared::new(seed_hash ^ input, layout.n))
+            .collect();
         Self {
             layout,
             seed,
@@ -405,6 +460,7 @@ impl NetPixelSampler {
             resolution: None,
             pixel: [0, 0],
             pixel_hash: pixel_hash(seed_hash, [0, 0]),
+            shared,
             index: 0,
             dimension: 0,
         }
@@ -482,28 +538,58 @@ impl NetPixelSampler {
         Some(d2.sqrt() / n - rounding)
     }
 
+    /// The moves of a draw and the offsets inside the cells, before the
+    /// moves act on them. Tiled counts: the bank entry, the symmetry and
+    /// the offsets from the tile composed with the shared moves, and the
+    /// rest (which point is sample `index`) from the pixel's hash; other
+    /// counts: all from the pixel's hashes.
     #[inline(always)]
-    fn hashes(&self, tag: u64, dimension: u32) -> (u64, u64) {
-        let input = self.pixel_hash ^ (u64::from(dimension) << 2 | tag);
-        (mix(input), mix(input ^ SECOND))
+    fn draw(&self, tag: u64, dimension: u32) -> (Moves, [u32; 2]) {
+        let kind = u64::from(dimension) << 2 | tag;
+        let input = self.pixel_hash ^ kind;
+        let layout = &*self.layout;
+        let mut moves = layout.moves(mix(input));
+        if let Some(tile) = layout.tile {
+            let computed;
+            let shared = match usize::try_from(kind).ok().and_then(|k| self.shared.get(k)) {
+                Some(s) => s,
+                None => {
+                    computed = Shared::new(self.seed_hash ^ kind, layout.n);
+                    &computed
+                }
+            };
+            let (set, symmetry, [ox, oy]) = tile_key(tile, self.pixel, shared);
+            moves.set = set;
+            moves.symmetry = compose(shared.symmetry, symmetry);
+            if layout.shifted {
+                moves.shift = [shared.shift, 0];
+            }
+            let offsets = [
+                (ox << 24).wrapping_add(shared.offset[0]),
+                (oy << 24).wrapping_add(shared.offset[1]),
+            ];
+            (moves, offsets)
+        } else {
+            let offsets = mix(input ^ SECOND);
+            #[expect(clippy::cast_possible_truncation, reason = "the low word")]
+            let offsets = [(offsets >> 32) as u32, offsets as u32];
+            (moves, offsets)
+        }
     }
 
     #[inline(always)]
     fn plane(&self, tag: u64, dimension: u32) -> [f64; 2] {
-        let (h, offsets) = self.hashes(tag, dimension);
+        let (moves, offsets) = self.draw(tag, dimension);
         let layout = &*self.layout;
-        let [x, y] = layout.place(layout.moves(h), self.index);
-        #[expect(clippy::cast_possible_truncation, reason = "the low word")]
-        let (ox, oy) = ((offsets >> 32) as u32, offsets as u32);
+        let ([x, y], [ox, oy]) = layout.place_offsets(moves, self.index, offsets);
         [layout.value(x, ox), layout.value(y, oy)]
     }
 
     #[inline(always)]
     fn line(&self, dimension: u32) -> f64 {
-        let (h, offsets) = self.hashes(TAG_1D, dimension);
+        let (moves, [offset, _]) = self.draw(TAG_1D, dimension);
         let layout = &*self.layout;
-        let slot = layout.slot(layout.moves(h), self.index);
-        let offset = (offsets >> 32) as u32;
+        let slot = layout.slot(moves, self.index);
         layout.value(slot, offset)
     }
 }
@@ -657,6 +743,75 @@ mod tests {
         for m in 10..NETS.len() {
             assert_balanced(1 << m);
         }
+    }
+
+    /// Over every tile offset, shared symmetry, shared column shift (for
+    /// shift-invariant banks) and key, through the sampler's own path
+    /// ([`tile_key`], [`compose`], [`Layout::place`]), sample `index` falls
+    /// equally often in every cell: the tiled draw is balanced as it is,
+    /// not only because the moves it makes are uniform.
+    fn assert_tiled_balanced_at(layout: &Layout, index: u32) {
+        use super::super::net_tile::TILE_SIDE;
+        let n = layout.n;
+        let tile = layout.tile.expect("a tiled count");
+        let shifts = if layout.shifted { n } else { 1 };
+        let unit = layout.units[layout.units.len() / 2];
+        let mut counts = vec![0u32; (n * n) as usize];
+        for ty in 0..TILE_SIDE {
+            for tx in 0..TILE_SIDE {
+                for g in 0..32 {
+                    for shift in 0..shifts {
+                        let shared = Shared {
+                            tile: [tx, ty],
+                            symmetry: g,
+                            shift,
+                            offset: [0, 0],
+                        };
+                        let (set, symmetry, _) = tile_key(tile, [5, 9], &shared);
+                        for key in 0..n {
+                            let mv = Moves {
+                                set,
+                                symmetry: compose(g, symmetry),
+                                shift: [shift, 0],
+                                unit,
+                                key,
+                            };
+                            let [x, y] = layout.place(mv, index);
+                            counts[(x * n + y) as usize] += 1;
+                        }
+                    }
+                }
+            }
+        }
+        let first = counts[0];
+        assert!(
+            counts.iter().all(|&c| c == first),
+            "n {n}, index {index}: counts from {} to {}",
+            counts.iter().min().unwrap(),
+            counts.iter().max().unwrap()
+        );
+    }
+
+    #[test]
+    fn tiled_draws_are_balanced() {
+        let mut tiled = 0;
+        for m in 0..NETS.len() {
+            let n = 1u32 << m;
+            let layout = Layout::build(n);
+            if layout.tile.is_none() {
+                continue;
+            }
+            tiled += 1;
+            let indices: Vec<u32> = if n <= 16 {
+                (0..n).collect()
+            } else {
+                vec![0, n / 2 + 1, n - 1]
+            };
+            for index in indices {
+                assert_tiled_balanced_at(&layout, index);
+            }
+        }
+        assert!(tiled >= 7, "tiles for 1 to 64 samples");
     }
 
     #[test]
