@@ -54,10 +54,13 @@
 #[path = "../src/render/net_table.rs"]
 #[allow(dead_code, reason = "only the bank is used")]
 mod net_table;
+#[path = "common/step_area.rs"]
+mod step_area;
 
 use net_table::{NETS, SHIFTED};
 use std::fmt::Write as _;
 use std::process::ExitCode;
+use step_area::step_area;
 
 /// Side of the tile, in pixels.
 const SIDE: usize = 32;
@@ -167,28 +170,7 @@ impl Shape {
     /// square, the disk's by a 2048² midpoint grid.
     fn integral(self) -> f64 {
         match self {
-            Shape::Step { a, b, c } => {
-                let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-                let side = |p: [f64; 2]| c - a * p[0] - b * p[1];
-                let mut poly: Vec<[f64; 2]> = Vec::new();
-                for i in 0..4 {
-                    let (p, q) = (square[i], square[(i + 1) % 4]);
-                    let (sp, sq) = (side(p), side(q));
-                    if sp > 0.0 {
-                        poly.push(p);
-                    }
-                    if (sp > 0.0) != (sq > 0.0) {
-                        let t = sp / (sp - sq);
-                        poly.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-                    }
-                }
-                let mut area = 0.0;
-                for i in 0..poly.len() {
-                    let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-                    area += p[0] * q[1] - q[0] * p[1];
-                }
-                0.5 * area.abs()
-            }
+            Shape::Step { a, b, c } => step_area([a, b, c]),
             Shape::Disk { .. } => {
                 let g = 2048;
                 let mut sum = 0.0;

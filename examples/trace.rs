@@ -48,6 +48,9 @@ mod report;
 mod scene;
 #[path = "trace/sources.rs"]
 mod sources;
+#[cfg(test)]
+#[path = "common/step_area.rs"]
+mod step_area;
 #[path = "trace/study.rs"]
 mod study;
 

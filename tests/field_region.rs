@@ -149,7 +149,9 @@ fn a_window_over_the_budget_is_refused_and_chunks_get_round_it() {
         }
         other => panic!("expected GridTooLarge, got {other:?}"),
     }
-    let chunked = field.points_in_parallel([0.0; 2], [1.0; 2], 0.1, 2).unwrap();
+    let chunked = field
+        .points_in_parallel([0.0; 2], [1.0; 2], 0.1, 2)
+        .unwrap();
     let plain = Field::new(Domain::from_extent([1.0, 1.0]).unwrap(), 0.01, 5).unwrap();
     assert_eq!(chunked, plain.points().unwrap());
 }

@@ -12,6 +12,10 @@
 
 use bridson::{NetPixelSampler, PixelSampler};
 
+#[path = "../examples/common/step_area.rs"]
+mod step_area;
+use step_area::step_area;
+
 /// Side of the image and of the periodogram.
 const SIDE: u32 = 32;
 
@@ -28,31 +32,6 @@ const STEPS: [[f64; 3]; 8] = [
     [0.45, -1.0, -0.2],
     [1.0, 0.0, 0.37],
 ];
-
-/// The area of `{a·x + b·y < c}` inside the unit square.
-fn step_area([a, b, c]: [f64; 3]) -> f64 {
-    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let side = |p: [f64; 2]| c - a * p[0] - b * p[1];
-    let mut poly: Vec<[f64; 2]> = Vec::new();
-    for i in 0..4 {
-        let (p, q) = (square[i], square[(i + 1) % 4]);
-        let (sp, sq) = (side(p), side(q));
-        if sp > 0.0 {
-            poly.push(p);
-        }
-        if (sp > 0.0) != (sq > 0.0) {
-            let t = sp / (sp - sq);
-            poly.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-        }
-    }
-    let twice: f64 = (0..poly.len())
-        .map(|i| {
-            let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-            p[0] * q[1] - q[0] * p[1]
-        })
-        .sum();
-    0.5 * twice.abs()
-}
 
 /// The error image of `step` under `sampler`: each pixel's film estimate
 /// less the step's area.

@@ -7,6 +7,7 @@
 use crate::common::samplers::{
     CANDIDATES, Pmj02bnSampler, ZSobolSampler, is_net, pmj02bn, shuffle_index,
 };
+use crate::step_area::step_area;
 use bridson::PixelSampler;
 
 #[test]
@@ -152,32 +153,6 @@ fn film_and_bank_sets_are_nets_and_values_deterministic() {
         }
     }
     assert!(Pmj02bnSampler::new(8192, 1).is_err(), "too many");
-}
-
-/// The area of `{a·x + b·y < c}` inside the unit square (the square
-/// clipped by the half-plane, then the shoelace formula).
-fn step_area([a, b, c]: [f64; 3]) -> f64 {
-    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    let side = |p: [f64; 2]| c - a * p[0] - b * p[1];
-    let mut poly: Vec<[f64; 2]> = Vec::new();
-    for i in 0..4 {
-        let (p, q) = (square[i], square[(i + 1) % 4]);
-        let (sp, sq) = (side(p), side(q));
-        if sp > 0.0 {
-            poly.push(p);
-        }
-        if (sp > 0.0) != (sq > 0.0) {
-            let t = sp / (sp - sq);
-            poly.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-        }
-    }
-    let twice: f64 = (0..poly.len())
-        .map(|i| {
-            let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-            p[0] * q[1] - q[0] * p[1]
-        })
-        .sum();
-    0.5 * twice.abs()
 }
 
 /// The held-out steps `[a, b, c]` (`1` where `a·x + b·y < c`): issue 51's

@@ -694,6 +694,17 @@ mod tests {
         }
     }
 
+    /// Every cell of the `n × n` grid counted sample `index` equally often.
+    fn assert_uniform(counts: &[u32], n: u32, index: u32) {
+        let first = counts[0];
+        assert!(
+            counts.iter().all(|&c| c == first),
+            "n {n}, index {index}: counts from {} to {}",
+            counts.iter().min().unwrap(),
+            counts.iter().max().unwrap()
+        );
+    }
+
     /// Over every move, sample `index` falls equally often in every cell
     /// of the `n × n` grid.
     fn assert_balanced_at(layout: &Layout, index: u32) {
@@ -703,13 +714,7 @@ mod tests {
             let [x, y] = layout.place(mv, index);
             counts[(x * n + y) as usize] += 1;
         });
-        let first = counts[0];
-        assert!(
-            counts.iter().all(|&c| c == first),
-            "n {n}, index {index}: counts from {} to {}",
-            counts.iter().min().unwrap(),
-            counts.iter().max().unwrap()
-        );
+        assert_uniform(&counts, n, index);
     }
 
     /// [`assert_balanced_at`] for every index up to 64 samples; at 128,
@@ -783,13 +788,7 @@ mod tests {
                 }
             }
         }
-        let first = counts[0];
-        assert!(
-            counts.iter().all(|&c| c == first),
-            "n {n}, index {index}: counts from {} to {}",
-            counts.iter().min().unwrap(),
-            counts.iter().max().unwrap()
-        );
+        assert_uniform(&counts, n, index);
     }
 
     #[test]
