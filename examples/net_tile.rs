@@ -55,6 +55,10 @@
 #[allow(dead_code, reason = "only the bank is used")]
 mod net_table;
 #[path = "common/step_area.rs"]
+#[allow(
+    dead_code,
+    reason = "the held-out steps serve the tracer and its test, not training"
+)]
 mod step_area;
 
 use net_table::{NETS, SHIFTED};

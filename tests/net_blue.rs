@@ -14,24 +14,10 @@ use bridson::{NetPixelSampler, PixelSampler};
 
 #[path = "../examples/common/step_area.rs"]
 mod step_area;
-use step_area::step_area;
+use step_area::{HELD_OUT_STEPS as STEPS, step_area};
 
 /// Side of the image and of the periodogram.
 const SIDE: u32 = 32;
-
-/// The held-out steps `[a, b, c]` (`1` where `a·x + b·y < c`): issue 51's
-/// `x + 0.35 y < 0.6` and seven more at other angles and positions (the
-/// same family as the tracer's `held_out_steps_table`).
-const STEPS: [[f64; 3]; 8] = [
-    [1.0, 0.35, 0.6],
-    [0.2, 1.0, 0.45],
-    [-0.7, 1.0, 0.3],
-    [1.0, -0.55, 0.25],
-    [0.9, 0.9, 1.1],
-    [-1.0, -0.15, -0.7],
-    [0.45, -1.0, -0.2],
-    [1.0, 0.0, 0.37],
-];
 
 /// The error image of `step` under `sampler`: each pixel's film estimate
 /// less the step's area.

@@ -7,7 +7,7 @@
 use crate::common::samplers::{
     CANDIDATES, Pmj02bnSampler, ZSobolSampler, is_net, pmj02bn, shuffle_index,
 };
-use crate::step_area::step_area;
+use crate::step_area::{HELD_OUT_STEPS, step_area};
 use bridson::PixelSampler;
 
 #[test]
@@ -154,22 +154,6 @@ fn film_and_bank_sets_are_nets_and_values_deterministic() {
     }
     assert!(Pmj02bnSampler::new(8192, 1).is_err(), "too many");
 }
-
-/// The held-out steps `[a, b, c]` (`1` where `a·x + b·y < c`): issue 51's
-/// `x + 0.35 y < 0.6` and seven more at other angles and positions, none of
-/// them among the generator's training scenarios (`examples/net_tile.rs`
-/// draws its own from a seeded generator). The same family as
-/// `tests/net_blue.rs`.
-pub(crate) const HELD_OUT_STEPS: [[f64; 3]; 8] = [
-    [1.0, 0.35, 0.6],
-    [0.2, 1.0, 0.45],
-    [-0.7, 1.0, 0.3],
-    [1.0, -0.55, 0.25],
-    [0.9, 0.9, 1.1],
-    [-1.0, -0.15, -0.7],
-    [0.45, -1.0, -0.2],
-    [1.0, 0.0, 0.37],
-];
 
 /// The low-frequency power of the per-pixel error of step integrands of
 /// the film offset, each shared by every pixel of a `side × side` image
