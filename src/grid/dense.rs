@@ -766,6 +766,54 @@ pub(crate) fn probe(
     x.clamp(lo, hi - side * 1e-9)
 }
 
+/// The grids' search tests' oracle: stored points in slabs of width `r`
+/// along axis 0, so that "is a stored point closer than `r`" scans the
+/// slab of the candidate and its two neighbours, every point of them
+/// checked, and shares nothing with the grids it checks.
+#[cfg(test)]
+pub(crate) struct Slabs<const N: usize> {
+    lo: f64,
+    r: f64,
+    slabs: std::collections::HashMap<i64, Vec<[f64; N]>>,
+}
+
+#[cfg(test)]
+impl<const N: usize> Slabs<N> {
+    pub(crate) fn new(lo: f64, r: f64) -> Self {
+        Self {
+            lo,
+            r,
+            slabs: std::collections::HashMap::new(),
+        }
+    }
+
+    #[expect(
+        clippy::cast_possible_truncation,
+        reason = "a whole number far inside i64: boxes of a few units, radii of 1e-4 and up"
+    )]
+    fn slab(&self, x: f64) -> i64 {
+        ((x - self.lo) / self.r).floor() as i64
+    }
+
+    pub(crate) fn insert(&mut self, p: [f64; N]) {
+        self.slabs.entry(self.slab(p[0])).or_default().push(p);
+    }
+
+    /// Every stored point closer than `r` to `p` (and some farther ones):
+    /// the points with `|q[0] - p[0]| < r`, and more.
+    pub(crate) fn near(&self, p: &[f64; N]) -> impl Iterator<Item = &[f64; N]> {
+        let k = self.slab(p[0]);
+        (k - 1..=k + 1).flat_map(move |j| self.slabs.get(&j).into_iter().flatten())
+    }
+
+    /// Whether `q` is stored (bit for bit).
+    pub(crate) fn contains(&self, q: &[f64; N]) -> bool {
+        self.slabs
+            .get(&self.slab(q[0]))
+            .is_some_and(|v| v.iter().any(|s| s.map(f64::to_bits) == q.map(f64::to_bits)))
+    }
+}
+
 /// The values of the occupied cells (not [`EMPTY`]) of `cells` among
 /// `offsets` around `base`, in order, into `found`, without a branch (most
 /// cells are empty); returns how many there were. Past `M` (a power of two)

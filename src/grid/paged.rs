@@ -545,7 +545,7 @@ impl<const N: usize> NeighbourGrid<N> for Paged<N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::dense::probe;
+    use super::super::dense::{Slabs, probe};
     use super::super::{GridLayout, GridPlan, plan};
     use super::*;
     use crate::vector::distance_squared;
@@ -568,8 +568,9 @@ mod tests {
     }
 
     /// The search finds a conflict exactly when a brute-force check over
-    /// every stored point does, for candidates all over their cells (on
-    /// cell and part faces, a hair either side, at random), in boxes of
+    /// every stored point of the candidate's slab and the two beside it
+    /// ([`Slabs`]) does, for candidates all over their cells (on cell and
+    /// part faces, a hair either side, at random), in boxes of
     /// several pages a side, so that pairs across page borders and the
     /// halos' copies are exercised.
     #[test]
@@ -584,7 +585,7 @@ mod tests {
             let pages: Vec<usize> = g.last_page.iter().map(|&p| p + 1).collect();
             assert!(pages.iter().any(|&p| p >= 2), "{N}-D: one page only");
             let mut rng = random::seeded_rng(seed);
-            let mut stored: Vec<[f64; N]> = Vec::new();
+            let mut stored = Slabs::<N>::new(domain.lo()[0], r);
             let side = g.inv_side.map(|s| 1.0 / s);
             let counts = g.last.map(|l| l + 1);
             let (mut hits, mut misses) = (0, 0);
@@ -598,7 +599,7 @@ mod tests {
                         counts[axis],
                     )
                 });
-                let brute = stored.iter().any(|q| distance_squared(&p, q) < r * r);
+                let brute = stored.near(&p).any(|q| distance_squared(&p, q) < r * r);
                 assert_eq!(g.conflict(&p).is_some(), brute, "{p:?}");
                 if brute {
                     hits += 1;
@@ -606,7 +607,7 @@ mod tests {
                     misses += 1;
                     assert!(g.reserve(&p, u64::MAX), "room");
                     if g.insert(p) {
-                        stored.push(p);
+                        stored.insert(p);
                     }
                 }
             }

@@ -374,7 +374,7 @@ impl<const N: usize> NeighbourGrid<N> for PagedBricks<N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::dense::probe;
+    use super::super::dense::{Slabs, probe};
     use super::super::{Grid, GridLayout, GridPlan, plan};
     use super::*;
     use crate::random;
@@ -396,8 +396,9 @@ mod tests {
     }
 
     /// The search finds a conflict exactly when a brute-force check over
-    /// every stored point does, for candidates all over their cells (on
-    /// cell and part faces, a hair either side, at random), in boxes of
+    /// every stored point of the candidate's slab and the two beside it
+    /// ([`Slabs`]) does, for candidates all over their cells (on cell and
+    /// part faces, a hair either side, at random), in boxes of
     /// several pages a side, so that windows straddling pages and pages
     /// not yet made are exercised; the seed hands out only stored points
     /// within its reach.
@@ -406,7 +407,7 @@ mod tests {
         fn check(domain: Domain<3>, r: f64, seed: u64, table: bool) {
             let mut g = grid(&domain, r, table);
             let mut rng = random::seeded_rng(seed);
-            let mut stored: Vec<[f64; 3]> = Vec::new();
+            let mut stored = Slabs::<3>::new(domain.lo()[0], r);
             let side = g.inv_side.map(|s| 1.0 / s);
             let counts = g.last.map(|l| l + 1);
             assert!(counts.iter().all(|&m| pages_for(m) >= 2), "{counts:?}");
@@ -421,7 +422,7 @@ mod tests {
                         counts[axis],
                     )
                 });
-                let brute = stored.iter().any(|q| distance_squared(&p, q) < r * r);
+                let brute = stored.near(&p).any(|q| distance_squared(&p, q) < r * r);
                 assert_eq!(g.conflict(&p).is_some(), brute, "{p:?}");
                 let mut seeded = 0;
                 g.seed(&p, 64, |q| {
@@ -436,14 +437,14 @@ mod tests {
                     // The seed reads every cell but the candidate's own.
                     let cell = |x: &[f64; 3]| locate(x, &g.lo, &g.inv_side, &g.last, 1).0;
                     let other = stored
-                        .iter()
+                        .near(&p)
                         .any(|q| distance_squared(&p, q) < r * r && cell(q) != cell(&p));
                     assert!(seeded > 0 || !other, "a neighbour the seed missed");
                 } else {
                     misses += 1;
                     assert!(g.reserve(&p, u64::MAX), "room");
                     if g.insert(p) {
-                        stored.push(p);
+                        stored.insert(p);
                     }
                 }
             }
