@@ -396,3 +396,65 @@ proptest! {
         check_case(&c)?;
     }
 }
+
+/// The oracle's sweep along one axis finds exactly the pairs the plain
+/// all-pairs check finds, in the same order: random points with clusters
+/// and repeats (so that there are pairs closer than `r`, at distance 0 too),
+/// on boxes with any axes periodic, some of them all.
+fn sweep_matches_all_pairs<const N: usize>(
+    seed: u64,
+    periodic: [bool; N],
+    r: f64,
+) -> Result<(), TestCaseError> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let (lo, hi) = ([-1.0; N], [2.0; N]);
+    let mut points: Vec<[f64; N]> = Vec::new();
+    for _ in 0..300 {
+        let p = match rng.random_range(0..4) {
+            // Near an earlier point (within about r), or a repeat of one.
+            0 | 1 if !points.is_empty() => {
+                let q = points[rng.random_range(0..points.len())];
+                let step = if rng.random_bool(0.2) { 0.0 } else { r };
+                core::array::from_fn(|a| {
+                    (q[a] + step * rng.random_range(-1.0..1.0)).clamp(-1.0, 1.9)
+                })
+            }
+            // Near the box's faces, for the periodic axes' wrap.
+            2 => core::array::from_fn(|_| {
+                if rng.random_bool(0.5) {
+                    rng.random_range(-1.0..-0.9)
+                } else {
+                    rng.random_range(1.9..2.0)
+                }
+            }),
+            _ => core::array::from_fn(|_| rng.random_range(-1.0..2.0)),
+        };
+        points.push(p);
+    }
+    let sweep = common::min_distance_violations(&points, r, lo, hi, periodic);
+    let all = common::all_pairs_violations(&points, r, lo, hi, periodic);
+    prop_assert!(!all.is_empty(), "the case has pairs closer than r");
+    let bits = |v: &[(usize, usize, f64)]| {
+        v.iter()
+            .map(|&(i, j, d)| (i, j, d.to_bits()))
+            .collect::<Vec<_>>()
+    };
+    prop_assert_eq!(bits(&sweep), bits(&all));
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(16))]
+
+    #[test]
+    fn the_oracles_sweep_matches_all_pairs(
+        seed: u64,
+        p2 in proptest::array::uniform2(any::<bool>()),
+        p3 in proptest::array::uniform3(any::<bool>()),
+        r in 0.01..0.5f64,
+    ) {
+        sweep_matches_all_pairs::<1>(seed, [p2[0]], r)?;
+        sweep_matches_all_pairs::<2>(seed, p2, r)?;
+        sweep_matches_all_pairs::<3>(seed, p3, r)?;
+    }
+}

@@ -219,6 +219,7 @@ fn every_count_up_to_300_is_exact_and_spread() {
 }
 
 #[test]
+#[ignore = "banks of 1000 to 4096 samples: ten seconds in a debug build; .ci/run runs it optimised (--profile bench -- --ignored)"]
 fn large_counts_are_exact_and_spread() {
     for spp in [1000, 2049, MAX_SAMPLES_PER_PIXEL] {
         let mut s = PoissonPixelSampler::new(spp, 9).unwrap();
@@ -227,6 +228,7 @@ fn large_counts_are_exact_and_spread() {
 }
 
 #[test]
+#[ignore = "banks up to 4096 samples: seconds in a debug build; .ci/run runs it optimised (--profile bench -- --ignored)"]
 fn sets_are_well_packed() {
     // ρ of the worst set in the bank (ρ = 1 is the densest packing); the
     // documented bounds.
